@@ -1,0 +1,36 @@
+// One output frame on the host: every field of every particle at one simulated time, in the
+// layout of docs/output.md. Particles are ordered by id. Writers and probes read only this.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cascade {
+
+struct FieldFrame {
+  struct RealField {
+    std::string name;      // e.g. "velocity", "pressure"
+    std::string units;     // e.g. "m/s", "Pa"
+    int components = 1;    // 1 for scalars, 3 for vectors, 6 for symmetric tensors (Voigt)
+    std::vector<double> values;  // N × components, row-major
+  };
+
+  double time = 0.0;             // simulated time (s)
+  std::uint64_t step = 0;
+  int dimensions = 3;            // of the case; positions are always written with 3 components
+  std::vector<double> position;  // N × 3, z up; 2D cases have y = 0
+  std::vector<std::uint8_t> phase;  // N: 0 water, 1 soil, 2 boundary
+  std::vector<std::uint32_t> id;    // N
+  std::vector<RealField> fields;    // velocity (N×3), pressure, density, ...
+
+  std::size_t size() const { return id.size(); }
+  const RealField* find(const std::string& name) const {
+    for (const auto& f : fields)
+      if (f.name == name) return &f;
+    return nullptr;
+  }
+};
+
+}  // namespace cascade
