@@ -1,0 +1,349 @@
+#include "server/scenario/case_validation.h"
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "server/scenario/case_error.h"
+#include "server/scenario/case_loader.h"
+
+namespace cascade {
+
+namespace {
+
+using google::protobuf::RepeatedField;
+using google::protobuf::RepeatedPtrField;
+namespace pb = cascade::v1;
+
+const std::set<std::string> kProbeFields = {"pressure", "density", "speed", "velocity_x", "velocity_y", "velocity_z"};
+const std::set<std::string> kPhases = {"water", "soil", "boundary"};
+
+std::string indexed(const std::string& key, int i) { return key + "[" + std::to_string(i) + "]"; }
+
+std::string number(double v) {
+  std::ostringstream out;
+  out.precision(10);
+  out << v;
+  return out.str();
+}
+
+// Walks the spec top-down and reports the first problem; `dims_` is trusted once checked.
+class SpecChecker {
+ public:
+  SpecChecker(const pb::ScenarioSpec& spec, const CaseFailure& fail) : spec_(spec), fail_(fail) {}
+
+  void run() {
+    check_scalars();
+    check_domain();
+    check_vector("gravity", spec_.gravity(), dims_, "the body force per unit mass");
+    check_materials();
+    check_bodies();
+    check_numerics();
+    check_output();
+    check_probes();
+  }
+
+ private:
+  [[noreturn]] void error(const std::string& key, const std::string& message) const {
+    fail_(key, message);
+    throw CaseError(key, message);  // in case `fail_` returned
+  }
+
+  std::string axis_name(int axis) const { return dims_ == 2 ? (axis == 0 ? "x" : "z") : std::string(1, "xyz"[axis]); }
+
+  void finite(const std::string& key, double v) const {
+    if (!std::isfinite(v)) error(key, "must be a finite number");
+  }
+  void positive(const std::string& key, double v) const {
+    finite(key, v);
+    if (v <= 0) error(key, "must be greater than 0 (is " + number(v) + ")");
+  }
+  void non_negative(const std::string& key, double v, const std::string& zero_means = {}) const {
+    finite(key, v);
+    if (v < 0)
+      error(key, "must not be negative (is " + number(v) + ")" + (zero_means.empty() ? "" : "; 0 means " + zero_means));
+  }
+
+  void check_vector(const std::string& key, const RepeatedField<double>& v, int size, const std::string& what) const {
+    if (v.size() != size)
+      error(key, "has " + std::to_string(v.size()) + (v.size() == 1 ? " component; " : " components; ") + what +
+                     " needs " + std::to_string(size) + (size == dims_ ? " (the case's `dimensions`)" : ""));
+    for (int i = 0; i < v.size(); ++i) finite(indexed(key, i), v[i]);
+  }
+
+  // max > min on every axis of an axis-aligned box (the domain or a Box shape).
+  void check_min_max(const std::string& key, const RepeatedField<double>& min, const RepeatedField<double>& max,
+                     const std::string& what) const {
+    check_vector(key + ".min", min, dims_, what);
+    check_vector(key + ".max", max, dims_, what);
+    for (int a = 0; a < dims_; ++a)
+      if (!(max[a] > min[a]))
+        error(key + ".max", "must be greater than " + key + ".min on axis " + axis_name(a) + " (" + number(max[a]) +
+                                " <= " + number(min[a]) + "): " + what + " would be empty");
+  }
+
+  void check_scalars() {
+    dims_ = spec_.dimensions();
+    if (dims_ != 2 && dims_ != 3) error("dimensions", "must be 2 or 3 (is " + std::to_string(spec_.dimensions()) + ")");
+    positive("dp", spec_.dp());
+    finite("h_over_dp", spec_.h_over_dp());
+    if (spec_.h_over_dp() != 0 && (spec_.h_over_dp() < 1 || spec_.h_over_dp() > 3))
+      error("h_over_dp", "must be in [1, 3] (is " + number(spec_.h_over_dp()) + "); leave it out for 1.3");
+    positive("end_time", spec_.end_time());
+  }
+
+  void check_domain() {
+    const pb::Domain& d = spec_.domain();
+    if (d.min().empty() && d.max().empty()) error("domain", "is missing: give domain.min and domain.max");
+    check_min_max("domain", d.min(), d.max(), "the domain");
+    double volume = 1;
+    for (int a = 0; a < dims_; ++a) volume *= d.max(a) - d.min(a);
+    if (!(volume > 0) || !std::isfinite(volume)) error("domain", "must have a positive, finite volume");
+    if (!d.periodic().empty() && d.periodic_size() != dims_)
+      error("domain.periodic", "has " + std::to_string(d.periodic_size()) + " entries; give none or one per axis (" +
+                                   std::to_string(dims_) + ")");
+  }
+
+  void check_materials() {
+    std::map<std::string, int> seen;
+    for (int i = 0; i < spec_.materials_size(); ++i) {
+      const pb::Material& m = spec_.materials(i);
+      const std::string key = indexed("materials", i);
+      if (m.name().empty()) error(key + ".name", "is missing: bodies refer to a material by its name");
+      if (auto [it, added] = seen.emplace(m.name(), i); !added)
+        error(key + ".name", "'" + m.name() + "' is already the name of " + indexed("materials", it->second));
+      switch (m.model_case()) {
+        case pb::Material::kWater:
+          check_water(key + ".water", m.water());
+          break;
+        case pb::Material::MODEL_NOT_SET:
+          error(key, "has no model: give one of: water");
+      }
+    }
+  }
+
+  void check_water(const std::string& key, const pb::WaterModel& w) const {
+    non_negative(key + ".density", w.density(), "1000");
+    non_negative(key + ".sound_speed", w.sound_speed(), "Eq. 24a");
+    non_negative(key + ".max_speed", w.max_speed(), "sqrt(2 g H)");
+    non_negative(key + ".max_pressure", w.max_pressure(), "rho g H");
+    if (w.has_delta()) {
+      non_negative(key + ".delta", w.delta());
+      if (w.delta() > 1) error(key + ".delta", "must be in [0, 1] (is " + number(w.delta()) + "; usually 0.1)");
+    }
+    if (w.has_viscosity_alpha()) non_negative(key + ".viscosity_alpha", w.viscosity_alpha());
+  }
+
+  bool material_defined(const std::string& name) const {
+    for (const pb::Material& m : spec_.materials())
+      if (m.name() == name) return true;
+    return false;
+  }
+
+  std::string material_names() const {
+    std::string names;
+    for (const pb::Material& m : spec_.materials()) names += (names.empty() ? "" : ", ") + m.name();
+    return names.empty() ? "none are defined" : "defined: " + names;
+  }
+
+  void check_bodies() {
+    if (spec_.bodies().empty()) error("bodies", "is empty: a case needs at least one body");
+    std::map<std::string, int> seen;
+    bool has_fluid = false;
+    for (int i = 0; i < spec_.bodies_size(); ++i) {
+      const pb::Body& b = spec_.bodies(i);
+      const std::string key = indexed("bodies", i);
+      if (b.name().empty()) error(key + ".name", "is missing");
+      if (auto [it, added] = seen.emplace(b.name(), i); !added)
+        error(key + ".name", "'" + b.name() + "' is already the name of " + indexed("bodies", it->second));
+      if (b.kind() != pb::FLUID && b.kind() != pb::BOUNDARY) error(key + ".kind", "is missing: give fluid or boundary");
+      has_fluid = has_fluid || b.kind() == pb::FLUID;
+      if (b.kind() == pb::FLUID && b.material().empty())
+        error(key + ".material", "is missing: a fluid body is made of a material");
+      if (!b.material().empty() && !material_defined(b.material()))
+        error(key + ".material", "'" + b.material() + "' is not a material (" + material_names() + ")");
+      check_shape(key + ".shape", b.shape(), true);
+      for (int j = 0; j < b.subtract_size(); ++j) check_shape(indexed(key + ".subtract", j), b.subtract(j), false);
+      if (!b.initial().velocity().empty())
+        check_vector(key + ".initial.velocity", b.initial().velocity(), dims_, "a velocity");
+      if (b.kind() == pb::BOUNDARY && (b.initial().hydrostatic() || !b.initial().velocity().empty()))
+        error(key + ".initial", "a boundary body is a fixed solid and has no initial state");
+      if (b.layers() < 0) error(key + ".layers", "must not be negative (0 means enough to cover 2h)");
+    }
+    if (!has_fluid) error("bodies", "has no fluid body: at least one body needs `kind: fluid`");
+  }
+
+  // `inside_domain`: the shape bounds a body, so its extent must lie in the domain (subtracted
+  // shapes may reach out of it, e.g. the open top of a tank).
+  void check_shape(const std::string& key, const pb::Shape& s, bool inside_domain) const {
+    switch (s.kind_case()) {
+      case pb::Shape::KIND_NOT_SET:
+        error(key, "names no shape: give one of box, polygon, extruded_polygon, half_space");
+      case pb::Shape::kBox: {
+        check_min_max(key + ".box", s.box().min(), s.box().max(), "the box");
+        if (inside_domain)
+          for (int a = 0; a < dims_; ++a) {
+            check_inside(key + ".box.min", s.box().min(a), a);
+            check_inside(key + ".box.max", s.box().max(a), a);
+          }
+        return;
+      }
+      case pb::Shape::kPolygon:
+        if (dims_ != 2) error(key + ".polygon", "is a 2D shape; a 3D case uses extruded_polygon");
+        check_vertices(key + ".polygon.vertices", s.polygon().vertices(), inside_domain);
+        return;
+      case pb::Shape::kExtrudedPolygon: {
+        const pb::ExtrudedPolygon& e = s.extruded_polygon();
+        if (dims_ != 3) error(key + ".extruded_polygon", "is a 3D shape; a 2D case uses polygon");
+        check_vertices(key + ".extruded_polygon.vertices", e.vertices(), inside_domain);
+        finite(key + ".extruded_polygon.y_min", e.y_min());
+        finite(key + ".extruded_polygon.y_max", e.y_max());
+        if (!(e.y_max() > e.y_min()))
+          error(key + ".extruded_polygon.y_max",
+                "must be greater than y_min (" + number(e.y_max()) + " <= " + number(e.y_min()) + ")");
+        if (inside_domain) {
+          check_inside(key + ".extruded_polygon.y_min", e.y_min(), 1);
+          check_inside(key + ".extruded_polygon.y_max", e.y_max(), 1);
+        }
+        return;
+      }
+      case pb::Shape::kHalfSpace: {
+        const pb::HalfSpace& h = s.half_space();
+        check_vector(key + ".half_space.point", h.point(), dims_, "a point");
+        check_vector(key + ".half_space.normal", h.normal(), dims_, "a normal");
+        double length2 = 0;
+        for (double c : h.normal()) length2 += c * c;
+        if (!(length2 > 0)) error(key + ".half_space.normal", "must not be the zero vector");
+        return;
+      }
+    }
+  }
+
+  void check_vertices(const std::string& key, const RepeatedPtrField<pb::Point2>& vertices, bool inside_domain) const {
+    if (vertices.size() < 3)
+      error(key, "has " + std::to_string(vertices.size()) + " vertices; a polygon needs at least 3");
+    double twice_area = 0;
+    for (int i = 0; i < vertices.size(); ++i) {
+      const pb::Point2& p = vertices[i];
+      const pb::Point2& q = vertices[(i + 1) % vertices.size()];
+      finite(indexed(key, i), p.x());
+      finite(indexed(key, i), p.z());
+      if (inside_domain) {
+        check_inside(indexed(key, i), p.x(), 0);
+        check_inside(indexed(key, i), p.z(), dims_ - 1);
+      }
+      twice_area += p.x() * q.z() - q.x() * p.z();
+    }
+    if (twice_area == 0) error(key, "encloses no area");
+  }
+
+  void check_inside(const std::string& key, double v, int axis) const {
+    const double lo = spec_.domain().min(axis), hi = spec_.domain().max(axis);
+    if (v < lo || v > hi)
+      error(key, "lies outside the domain on axis " + axis_name(axis) + " (" + number(v) + " not in [" + number(lo) +
+                     ", " + number(hi) + "])");
+  }
+
+  void check_numerics() const {
+    const pb::Numerics& n = spec_.numerics();
+    finite("numerics.cfl", n.cfl());
+    if (n.cfl() < 0 || n.cfl() > 1)
+      error("numerics.cfl", "must be in (0, 1] (is " + number(n.cfl()) + "; 0 means 0.2)");
+    non_negative("numerics.max_dt", n.max_dt(), "no upper bound");
+    non_negative("numerics.min_dt", n.min_dt(), "1e-12");
+    if (n.max_dt() > 0 && n.min_dt() > n.max_dt())
+      error("numerics.min_dt",
+            "must not exceed numerics.max_dt (" + number(n.min_dt()) + " > " + number(n.max_dt()) + ")");
+  }
+
+  void check_output() const { non_negative("output.interval", spec_.output().interval(), "end_time / 100"); }
+
+  void check_probes() const {
+    std::map<std::string, int> seen;
+    for (int i = 0; i < spec_.probes_size(); ++i) {
+      const pb::Probe& p = spec_.probes(i);
+      const std::string key = indexed("probes", i);
+      if (p.name().empty()) error(key + ".name", "is missing: it heads the probe's column in probes.csv");
+      if (auto [it, added] = seen.emplace(p.name(), i); !added)
+        error(key + ".name", "'" + p.name() + "' is already the name of " + indexed("probes", it->second));
+      if (!p.phase().empty() && !kPhases.count(p.phase()))
+        error(key + ".phase", "'" + p.phase() + "' is not a phase (water, soil, boundary)");
+      const bool uses_field = p.kind() == pb::POINT || p.kind() == pb::MAX || p.kind() == pb::MEAN;
+      switch (p.kind()) {
+        case pb::POINT:
+          check_vector(key + ".position", p.position(), dims_, "a point probe");
+          for (int a = 0; a < dims_; ++a) check_inside(key + ".position", p.position(a), a);
+          break;
+        case pb::ELEVATION:
+          // The vertical line at x (2D) or (x, y) (3D).
+          check_vector(key + ".position", p.position(), dims_ - 1, "an elevation probe (the horizontal coordinates)");
+          for (int a = 0; a < dims_ - 1; ++a) check_inside(key + ".position", p.position(a), a);
+          if (!p.phase().empty() && p.phase() != "water")
+            error(key + ".phase", "an elevation probe measures the water surface; leave phase out or give water");
+          break;
+        case pb::FRONT:
+          if (p.axis().empty()) error(key + ".axis", "is missing: a front probe needs an axis (" + axes() + ")");
+          if (p.axis().size() != 1 || axes().find(p.axis()) == std::string::npos)
+            error(key + ".axis", "'" + p.axis() + "' is not an axis of this case (" + axes() + ")");
+          finite(key + ".origin", p.origin());
+          break;
+        case pb::MAX:
+        case pb::MEAN:
+          if (!p.position().empty()) error(key + ".position", "is not used by max and mean probes");
+          break;
+        default:
+          error(key + ".kind", "is missing: give one of point, elevation, front, max, mean");
+      }
+      if (uses_field) {
+        if (p.field().empty()) error(key + ".field", "is missing: give one of " + field_names());
+        if (!kProbeFields.count(p.field()) || (dims_ == 2 && p.field() == "velocity_y"))
+          error(key + ".field", "'" + p.field() + "' is not a field (" + field_names() + ")");
+      } else if (!p.field().empty()) {
+        error(key + ".field", "is not used by this kind of probe");
+      }
+      if (p.kind() != pb::FRONT && (!p.axis().empty() || p.minimum() || p.origin() != 0))
+        error(key + (p.axis().empty() ? (p.minimum() ? ".minimum" : ".origin") : ".axis"),
+              "is used by front probes only");
+    }
+  }
+
+  std::string axes() const { return dims_ == 2 ? "x, z" : "x, y, z"; }
+  std::string field_names() const {
+    return dims_ == 2 ? "pressure, density, speed, velocity_x, velocity_z"
+                      : "pressure, density, speed, velocity_x, velocity_y, velocity_z";
+  }
+
+  const pb::ScenarioSpec& spec_;
+  const CaseFailure& fail_;
+  int dims_ = 0;
+};
+
+}  // namespace
+
+void check_spec(const pb::ScenarioSpec& spec, const CaseFailure& fail) { SpecChecker(spec, fail).run(); }
+
+void validate_spec(const pb::ScenarioSpec& spec) {
+  check_spec(spec, [](const std::string& key, const std::string& message) { throw CaseError(key, message); });
+}
+
+void apply_defaults(pb::ScenarioSpec& spec) {
+  if (spec.h_over_dp() == 0) spec.set_h_over_dp(1.3);
+  pb::Numerics& numerics = *spec.mutable_numerics();
+  if (numerics.cfl() == 0) numerics.set_cfl(0.2);
+  if (numerics.min_dt() == 0) numerics.set_min_dt(1e-12);
+  pb::Output& output = *spec.mutable_output();
+  if (output.interval() == 0) output.set_interval(spec.end_time() / 100);
+  if (!output.has_hdf5()) output.set_hdf5(true);
+  for (pb::Material& m : *spec.mutable_materials()) {
+    if (m.model_case() != pb::Material::kWater) continue;
+    pb::WaterModel& w = *m.mutable_water();
+    if (w.density() == 0) w.set_density(1000);
+    if (!w.has_delta()) w.set_delta(0.1);
+    if (!w.has_viscosity_alpha()) w.set_viscosity_alpha(0.01);
+  }
+  for (pb::Probe& p : *spec.mutable_probes())
+    if (p.phase().empty()) p.set_phase("water");
+}
+
+}  // namespace cascade
