@@ -1,0 +1,222 @@
+#include "server/io/hdf5_writer.h"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+
+namespace cascade {
+namespace {
+
+static_assert(std::is_same_v<hid_t, std::int64_t>, "file_ stores an hid_t");
+
+constexpr char kFormat[] = "cascade-fields-1";
+
+// Owns one HDF5 identifier; the constructor throws when the call that made it failed.
+class Handle {
+ public:
+  Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
+    if (id_ < 0) throw std::runtime_error("HDF5: cannot " + what);
+  }
+  ~Handle() { close_(id_); }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  operator hid_t() const { return id_; }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+void check(herr_t status, const std::string& what) {
+  if (status < 0) throw std::runtime_error("HDF5: cannot " + what);
+}
+
+void write_string_attribute(hid_t object, const char* name, const std::string& value) {
+  // Variable-length UTF-8: h5py returns it as str, C readers as char*.
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy string type");
+  check(H5Tset_size(type, H5T_VARIABLE), "size string type");
+  check(H5Tset_cset(type, H5T_CSET_UTF8), "set string encoding");
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create scalar space");
+  Handle attribute(H5Acreate2(object, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                   std::string("create attribute ") + name);
+  const char* text = value.c_str();
+  check(H5Awrite(attribute, type, &text), std::string("write attribute ") + name);
+}
+
+void write_scalar_attribute(hid_t object, const char* name, hid_t file_type, hid_t memory_type,
+                            const void* value) {
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create scalar space");
+  Handle attribute(H5Acreate2(object, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                   std::string("create attribute ") + name);
+  check(H5Awrite(attribute, memory_type, value), std::string("write attribute ") + name);
+}
+
+// Writes rows x components values as a dataset of shape (rows) or (rows, components), chunked
+// and compressed when there are more than kCompressAbove rows.
+void write_dataset(hid_t group, const std::string& name, hid_t file_type, hid_t memory_type,
+                   std::size_t rows, int components, const void* data, const std::string& units) {
+  const int rank = components == 1 ? 1 : 2;
+  const hsize_t dims[2] = {rows, static_cast<hsize_t>(components)};
+  Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose, "create space of " + name);
+  Handle properties(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "create properties of " + name);
+  if (rows > Hdf5FieldWriter::kCompressAbove) {
+    // About 1 MiB per chunk: large enough for gzip, small enough to read a slice cheaply.
+    const std::size_t row_bytes = H5Tget_size(file_type) * static_cast<std::size_t>(components);
+    const hsize_t chunk[2] = {
+        std::min<hsize_t>(rows, std::max<std::size_t>(1, (1u << 20) / row_bytes)),
+        static_cast<hsize_t>(components)};
+    check(H5Pset_chunk(properties, rank, chunk), "chunk " + name);
+    if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
+      check(H5Pset_shuffle(properties), "shuffle " + name);  // byte planes compress far better
+      check(H5Pset_deflate(properties, 1), "compress " + name);
+    }
+  }
+  Handle dataset(
+      H5Dcreate2(group, name.c_str(), file_type, space, H5P_DEFAULT, properties, H5P_DEFAULT),
+      H5Dclose, "create dataset " + name);
+  if (rows > 0)
+    check(H5Dwrite(dataset, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
+  write_string_attribute(dataset, "units", units);
+}
+
+bool is_reserved(const std::string& name) {
+  return name == "position" || name == "phase" || name == "id";
+}
+
+void validate(const FieldFrame& frame) {
+  const std::size_t n = frame.size();
+  if (frame.dimensions < 1 || frame.dimensions > 3)
+    throw std::invalid_argument("frame dimensions must be 1, 2 or 3, not " +
+                                std::to_string(frame.dimensions));
+  if (frame.position.size() != 3 * n)
+    throw std::invalid_argument("position has " + std::to_string(frame.position.size()) +
+                                " values, expected 3 x " + std::to_string(n));
+  if (frame.phase.size() != n)
+    throw std::invalid_argument("phase has " + std::to_string(frame.phase.size()) +
+                                " values, expected " + std::to_string(n));
+  for (std::size_t i = 0; i < frame.fields.size(); ++i) {
+    const FieldFrame::RealField& f = frame.fields[i];
+    if (f.name.empty() || f.name == "." || f.name.find('/') != std::string::npos ||
+        is_reserved(f.name))
+      throw std::invalid_argument("field name '" + f.name + "' is not allowed");
+    for (std::size_t j = 0; j < i; ++j)
+      if (frame.fields[j].name == f.name)
+        throw std::invalid_argument("field '" + f.name + "' appears twice");
+    if (f.components < 1 || f.values.size() != n * static_cast<std::size_t>(f.components))
+      throw std::invalid_argument("field '" + f.name + "' has " + std::to_string(f.values.size()) +
+                                  " values, expected " + std::to_string(f.components) + " x " +
+                                  std::to_string(n));
+  }
+}
+
+std::string frame_group_name(std::size_t frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "/frames/%06zu", frame);
+  return name;
+}
+
+}  // namespace
+
+Hdf5FieldWriter::Hdf5FieldWriter(const std::filesystem::path& h5_path,
+                                 std::vector<std::string> fields_filter)
+    : path_(h5_path),
+      fields_filter_(std::move(fields_filter)),
+      xdmf_(std::filesystem::path(h5_path).replace_extension(".xdmf"),
+            h5_path.filename().string()) {
+  if (path_.has_parent_path()) std::filesystem::create_directories(path_.parent_path());
+  const hid_t file = H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (file < 0) throw std::runtime_error("HDF5: cannot create " + path_.string());
+  file_ = file;
+  try {
+    write_string_attribute(file, "format", kFormat);
+    Handle frames(H5Gcreate2(file, "/frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                  "create /frames in " + path_.string());
+    check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush " + path_.string());
+  } catch (...) {
+    H5Fclose(file);
+    throw;
+  }
+}
+
+Hdf5FieldWriter::~Hdf5FieldWriter() {
+  if (file_ >= 0) H5Fclose(file_);
+}
+
+void Hdf5FieldWriter::close() {
+  if (file_ < 0) return;
+  const herr_t status = H5Fclose(file_);
+  file_ = -1;
+  check(status, "close " + path_.string());
+}
+
+bool Hdf5FieldWriter::selected(const std::string& field_name) const {
+  return fields_filter_.empty() || std::find(fields_filter_.begin(), fields_filter_.end(),
+                                             field_name) != fields_filter_.end();
+}
+
+// One dataset 0 … N-1 per particle count, shared by every frame with that count: the explicit
+// vertex connectivity of the XDMF Polyvertex topology.
+std::string Hdf5FieldWriter::connectivity_dataset(std::size_t particles) {
+  const std::string name = "/topology/polyvertex_" + std::to_string(particles);
+  if (std::find(connectivity_written_.begin(), connectivity_written_.end(), particles) !=
+      connectivity_written_.end())
+    return name;
+  if (connectivity_written_.empty()) {
+    Handle group(H5Gcreate2(file_, "/topology", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                 "create /topology");
+  }
+  std::vector<std::uint32_t> indices(particles);
+  std::iota(indices.begin(), indices.end(), 0u);
+  write_dataset(file_, name, H5T_STD_U32LE, H5T_NATIVE_UINT32, particles, 1, indices.data(), "1");
+  connectivity_written_.push_back(particles);
+  return name;
+}
+
+void Hdf5FieldWriter::write(const FieldFrame& frame) {
+  if (file_ < 0) throw std::logic_error("write to closed " + path_.string());
+  validate(frame);
+  if (frames_ == 0) {
+    dimensions_ = frame.dimensions;
+    write_scalar_attribute(file_, "dimensions", H5T_STD_I32LE, H5T_NATIVE_INT, &dimensions_);
+  } else if (frame.dimensions != dimensions_) {
+    throw std::invalid_argument("frame has dimensions " + std::to_string(frame.dimensions) +
+                                ", earlier frames " + std::to_string(dimensions_));
+  }
+
+  const std::size_t n = frame.size();
+  const std::string group_name = frame_group_name(frames_);
+  XdmfWriter::Grid grid;
+  grid.time = frame.time;
+  grid.nodes = n;
+  grid.connectivity_dataset = connectivity_dataset(n);
+  grid.position_dataset = group_name + "/position";
+  {
+    Handle group(H5Gcreate2(file_, group_name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                 H5Gclose, "create " + group_name);
+    write_scalar_attribute(group, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &frame.time);
+    write_scalar_attribute(group, "step", H5T_STD_U64LE, H5T_NATIVE_UINT64, &frame.step);
+    write_dataset(group, "position", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, 3, frame.position.data(),
+                  "m");
+    write_dataset(group, "phase", H5T_STD_U8LE, H5T_NATIVE_UINT8, n, 1, frame.phase.data(), "1");
+    write_dataset(group, "id", H5T_STD_U32LE, H5T_NATIVE_UINT32, n, 1, frame.id.data(), "1");
+    grid.attributes.push_back({"phase", group_name + "/phase", 1, XdmfWriter::NumberType::uint8});
+    grid.attributes.push_back({"id", group_name + "/id", 1, XdmfWriter::NumberType::uint32});
+    for (const FieldFrame::RealField& f : frame.fields) {
+      if (!selected(f.name)) continue;
+      write_dataset(group, f.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, f.components,
+                    f.values.data(), f.units);
+      grid.attributes.push_back(
+          {f.name, group_name + "/" + f.name, f.components, XdmfWriter::NumberType::float64});
+    }
+  }
+  check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flush " + path_.string());
+  xdmf_.append(grid);
+  ++frames_;
+}
+
+}  // namespace cascade

@@ -1,0 +1,45 @@
+// run.json: what a finished (or failed) run reports about itself, for people and for scripts
+// that compare runs. Keys and units in docs/output.md.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace cascade {
+
+struct RunEvent {
+  double time = 0.0;  // simulated time (s)
+  std::uint64_t step = 0;
+  std::string kind;    // e.g. "steer", "checkpoint", "particles_lost"
+  std::string detail;  // free text
+};
+
+struct RunSummary {
+  enum class Status { completed, failed };
+
+  std::string case_name;
+  Status status = Status::completed;
+  std::string error;                 // written only when status is failed
+  std::string precision = "double";  // "float" or "double"
+  double sim_time = 0.0;             // simulated time reached (s)
+  std::uint64_t steps = 0;
+  double wall_seconds = 0.0;
+  struct Particles {
+    std::uint64_t total = 0, water = 0, soil = 0, boundary = 0;
+  } particles;
+  double particle_steps_per_second = 0.0;  // particles × steps / wall_seconds
+  double bytes_per_particle = 0.0;         // device memory of the particle arrays / total
+  std::uint64_t lost_particles = 0;        // particles that left the domain
+  std::vector<RunEvent> events;
+};
+
+// The summary as a JSON object (UTF-8, two-space indent). Non-finite numbers become null;
+// invalid UTF-8 in strings becomes U+FFFD.
+std::string run_summary_json(const RunSummary& summary);
+
+// Writes run_summary_json(summary) to `path` atomically (temporary file, then rename).
+void write_run_json(const std::filesystem::path& path, const RunSummary& summary);
+
+}  // namespace cascade
