@@ -1,0 +1,234 @@
+#include "clients/cli/run_command.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "clients/cli/progress.h"
+#include "server/core/engine.h"
+#include "server/io/hdf5_writer.h"
+#include "server/io/probe_csv_writer.h"
+#include "server/io/probe_sampler.h"
+#include "server/io/run_summary.h"
+#include "server/io/vtk_writer.h"
+#include "server/scenario/case_error.h"
+#include "server/scenario/case_loader.h"
+#include "server/scenario/engine_setup.h"
+#include "server/scenario/particle_builder.h"
+
+namespace cascade::cli {
+
+namespace {
+
+std::atomic<int> g_signal{0};
+
+extern "C" void on_signal(int signal) { g_signal.store(signal); }
+
+struct RunOptions {
+  std::string case_path;
+  std::filesystem::path out_dir;
+  std::vector<CaseOverride> overrides;
+  std::optional<double> until;
+  int threads = 0;
+#if defined(CASCADE_DEFAULT_FLOAT)
+  Precision precision = Precision::single_precision;
+#else
+  Precision precision = Precision::double_precision;
+#endif
+};
+
+[[noreturn]] void usage_error(const std::string& message) { throw std::invalid_argument(message); }
+
+double parse_number(const std::string& option, const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used != text.size()) throw std::invalid_argument("trailing characters");
+    return v;
+  } catch (const std::exception&) {
+    usage_error(option + " needs a number, got '" + text + "'");
+  }
+}
+
+RunOptions parse_options(const std::vector<std::string>& args) {
+  RunOptions o;
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    const std::string& a = args[k];
+    auto value = [&]() -> const std::string& {
+      if (k + 1 >= args.size()) usage_error(a + " needs a value");
+      return args[++k];
+    };
+    if (a == "--out") o.out_dir = value();
+    else if (a == "--set") o.overrides.push_back(parse_override(value()));
+    else if (a == "--until") {
+      const double t = parse_number(a, value());
+      if (!(t > 0)) usage_error("--until must be a positive time in seconds");
+      o.until = t;
+    } else if (a == "--threads") {
+      const double n = parse_number(a, value());
+      if (!(n >= 1 && n <= 1024 && n == std::floor(n))) usage_error("--threads must be a whole number from 1 to 1024");
+      o.threads = int(n);
+    } else if (a == "--precision") {
+      const std::string& p = value();
+      if (p == "float") o.precision = Precision::single_precision;
+      else if (p == "double") o.precision = Precision::double_precision;
+      else usage_error("--precision must be float or double, not '" + p + "'");
+    } else if (!a.empty() && a[0] == '-') usage_error("unknown option '" + a + "'");
+    else if (o.case_path.empty()) o.case_path = a;
+    else usage_error("unexpected argument '" + a + "' (one case file only)");
+  }
+  if (o.case_path.empty()) usage_error("no case file given");
+  if (o.out_dir.empty()) usage_error("--out DIR is required");
+  return o;
+}
+
+const char* precision_name(Precision p) { return p == Precision::single_precision ? "float" : "double"; }
+
+// Writes frames and probes at their intervals. Frames every `output.interval`, probes every
+// `output.probe_interval`, both also at the start and at the end of the run.
+class Outputs {
+ public:
+  Outputs(const v1::ScenarioSpec& spec, const std::filesystem::path& dir, double h, double mass)
+      : sampler_(spec, h, mass),
+        frame_interval_(spec.output().interval()),
+        probe_interval_(spec.output().probe_interval() > 0 ? spec.output().probe_interval()
+                                                          : spec.output().interval() / 10.0) {
+    std::filesystem::create_directories(dir);
+    if (!spec.output().has_hdf5() || spec.output().hdf5()) hdf5_ = std::make_unique<Hdf5FieldWriter>(dir / "fields.h5");
+    if (spec.output().vtk()) vtk_ = std::make_unique<VtkSeriesWriter>(dir / "vtk");
+    probes_ = std::make_unique<ProbeCsvWriter>(dir / "probes.csv", sampler_.names());
+  }
+
+  void observe(const Engine& engine, bool force) {
+    const double t = engine.time();
+    const bool frame_due = force || t >= next_frame_ - 1e-12 * frame_interval_;
+    const bool probe_due = force || t >= next_probe_ - 1e-12 * probe_interval_;
+    if (!frame_due && !probe_due) return;
+    if (force && t == last_time_) return;  // the end coincides with a regular output
+    const FieldFrame frame = engine.frame();
+    if (probe_due) {
+      probes_->write_row(t, sampler_.sample(frame));
+      while (next_probe_ <= t) next_probe_ += probe_interval_;
+    }
+    if (frame_due) {
+      if (hdf5_) hdf5_->write(frame);
+      if (vtk_) vtk_->write(frame);
+      while (next_frame_ <= t) next_frame_ += frame_interval_;
+    }
+    last_time_ = t;
+  }
+
+ private:
+  ProbeSampler sampler_;
+  double frame_interval_, probe_interval_;
+  double next_frame_ = 0, next_probe_ = 0, last_time_ = -1;
+  std::unique_ptr<Hdf5FieldWriter> hdf5_;
+  std::unique_ptr<VtkSeriesWriter> vtk_;
+  std::unique_ptr<ProbeCsvWriter> probes_;
+};
+
+}  // namespace
+
+int run_command(const std::vector<std::string>& args) {
+  RunOptions options;
+  v1::ScenarioSpec spec;
+  ParticleSet set;
+  try {
+    options = parse_options(args);
+    spec = load_case_file(options.case_path, options.overrides);
+    set = build_particle_set(spec);
+  } catch (const CaseError& e) {
+    std::fprintf(stderr, "cascade run: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cascade run: %s\n", e.what());
+    return 2;
+  }
+  if (options.threads > 0) omp_set_num_threads(options.threads);
+
+  RunSummary summary;
+  summary.case_name = spec.name();
+  summary.precision = precision_name(options.precision);
+  const auto& particles = set.particles;
+  summary.particles = {particles.size(), particles.count(Phase::water), particles.count(Phase::soil),
+                       particles.count(Phase::boundary)};
+  const double end_time = options.until ? *options.until : spec.end_time();
+  const auto json_path = options.out_dir / "run.json";
+
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<Engine> engine;
+  int exit_code = 0;
+  try {
+    const EngineConfig config = engine_config(spec, particles, options.precision);
+    engine = make_engine(config, particles);
+    Outputs outputs(spec, options.out_dir, config.h, config.water_density * std::pow(config.dp, config.dimensions));
+    std::fprintf(stderr,
+                 "cascade run: %s, %zu particles (%zu water, %zu boundary), dp = %g m, h = %g m, c0 = %.3f m/s, "
+                 "%s on %s with %d threads, until t = %g s\n",
+                 spec.name().c_str(), particles.size(), std::size_t(summary.particles.water),
+                 std::size_t(summary.particles.boundary), config.dp, config.h, config.sound_speed,
+                 summary.precision.c_str(), engine->device_name(), omp_get_max_threads(), end_time);
+    Progress progress(end_time, stderr);
+    outputs.observe(*engine, true);
+    std::size_t lost = 0;
+    while (engine->time() < end_time * (1 - 1e-12)) {
+      if (g_signal.load() != 0) {
+        outputs.observe(*engine, true);
+        throw SimulationFailure("interrupted by signal " + std::to_string(g_signal.load()) + " at t = " +
+                                std::to_string(engine->time()) + " s; outputs hold the run up to there");
+      }
+      engine->step();
+      outputs.observe(*engine, false);
+      progress.update(engine->time(), engine->step_count(), engine->last_dt());
+      if (engine->lost_particles() != lost) {
+        summary.events.push_back({engine->time(), engine->step_count(), "particles_lost",
+                                  std::to_string(engine->lost_particles() - lost) +
+                                      " particles left the domain (" + std::to_string(engine->lost_particles()) +
+                                      " in all)"});
+        lost = engine->lost_particles();
+      }
+    }
+    outputs.observe(*engine, true);
+    progress.finish(engine->time(), engine->step_count());
+    summary.status = RunSummary::Status::completed;
+  } catch (const std::exception& e) {
+    summary.status = RunSummary::Status::failed;
+    summary.error = e.what();
+    std::fprintf(stderr, "\ncascade run: failed: %s\n", e.what());
+    exit_code = 1;
+  }
+  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (engine) {
+    summary.sim_time = engine->time();
+    summary.steps = engine->step_count();
+    summary.lost_particles = engine->lost_particles();
+    summary.bytes_per_particle = double(engine->device_bytes()) / double(std::max<std::size_t>(1, particles.size()));
+    summary.particle_steps_per_second =
+        summary.wall_seconds > 0 ? double(particles.size()) * double(summary.steps) / summary.wall_seconds : 0.0;
+  }
+  try {
+    std::filesystem::create_directories(options.out_dir);
+    write_run_json(json_path, summary);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cascade run: cannot write %s: %s\n", json_path.c_str(), e.what());
+    return 1;
+  }
+  std::fprintf(stderr, "cascade run: %s: t = %g s, %llu steps, %.1f s wall, %.3g particle-steps/s; outputs in %s\n",
+               exit_code == 0 ? "completed" : "failed", summary.sim_time, static_cast<unsigned long long>(summary.steps),
+               summary.wall_seconds, summary.particle_steps_per_second, options.out_dir.c_str());
+  return exit_code;
+}
+
+}  // namespace cascade::cli

@@ -1,0 +1,61 @@
+// The engine seen from outside: set-up constants, the abstract Engine, and its factory.
+// Callers (the runner, later the server) never see the backend, the precision or Thrust.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "server/core/field_frame.h"
+#include "server/core/host_particles.h"
+
+namespace cascade {
+
+enum class Precision { single_precision, double_precision };
+enum class Device { cpu, cuda };
+
+struct EngineConfig {
+  int dimensions = 2;
+  double dp = 0;                        // initial particle spacing (m)
+  double h = 0;                         // smoothing length (m)
+  std::array<double, 3> gravity{};      // first `dimensions` components used
+  std::array<double, 3> domain_min{};
+  std::array<double, 3> domain_max{};
+  std::array<bool, 3> periodic{};
+  double water_density = 1000;          // ρ_w0
+  double sound_speed = 0;               // c_w0 (Eq. 24a)
+  double delta = 0.1;                   // δ (Eq. 23a)
+  double viscosity_alpha = 0.01;        // α_μ,w (Eq. 23b)
+  double cfl = 0.2;                     // C0 (Eq. 40d)
+  double max_dt = 0;                    // 0: none
+  double min_dt = 1e-12;                // a smaller step fails the run
+  Precision precision = Precision::double_precision;
+  Device device = Device::cpu;
+};
+
+// Why a run cannot go on (time step collapsed, non-finite state).
+class SimulationFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  virtual void step() = 0;                       // one Symplectic Position Verlet step
+  virtual double time() const = 0;               // simulated time (s)
+  virtual std::uint64_t step_count() const = 0;
+  virtual double last_dt() const = 0;
+  virtual std::size_t particle_count() const = 0;
+  virtual std::size_t lost_particles() const = 0;  // left the domain along a non-periodic axis
+  virtual std::size_t device_bytes() const = 0;    // memory held in particle and grid arrays
+  virtual FieldFrame frame() const = 0;            // all fields on the host, ordered by id
+  virtual const char* device_name() const = 0;
+};
+
+std::unique_ptr<Engine> make_engine(const EngineConfig& config, const HostParticles& particles);
+
+}  // namespace cascade

@@ -1,0 +1,143 @@
+// Cell-linked neighbour grid. Particles are sorted by cell key every step so that the particles of
+// one cell, and of a row of cells along x, are contiguous in memory; `cell_start[k]` is the first
+// particle of cell k and `cell_start[ncells]` the number of particles inside the domain.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "server/core/types.h"
+
+namespace cascade {
+
+template <typename Real, int Dim>
+struct GridView {
+  Vec<Real, Dim> origin;   // domain minimum
+  Vec<Real, Dim> length;   // domain extent
+  Real inv_cell[Dim];      // 1 / cell size per axis (cell size >= 2h)
+  int ncell[Dim];
+  bool periodic[Dim];
+  Real support2;           // (2h)²
+  const std::uint32_t* cell_start = nullptr;  // ncells + 1 entries
+
+  CASCADE_HD std::uint32_t cell_count() const {
+    std::uint32_t n = 1;
+    for (int a = 0; a < Dim; ++a) n *= std::uint32_t(ncell[a]);
+    return n;
+  }
+
+  // Along a periodic axis a position outside the period falls in the cell of its periodic image.
+  CASCADE_HD int cell_coordinate(Real x, int axis) const {
+    int c = int(std::floor((x - origin[axis]) * inv_cell[axis]));
+    if (periodic[axis]) {
+      c %= ncell[axis];
+      return c < 0 ? c + ncell[axis] : c;
+    }
+    if (c < 0) c = 0;
+    if (c >= ncell[axis]) c = ncell[axis] - 1;
+    return c;
+  }
+
+  // False when x lies outside the domain along a non-periodic axis.
+  CASCADE_HD bool contains(const Vec<Real, Dim>& x) const {
+    for (int a = 0; a < Dim; ++a) {
+      if (periodic[a]) continue;
+      const Real s = x[a] - origin[a];
+      if (!(s >= Real(0) && s <= length[a])) return false;
+    }
+    return true;
+  }
+
+  CASCADE_HD std::uint32_t key(const int* c) const {
+    std::uint32_t k = std::uint32_t(c[Dim - 1]);
+    for (int a = Dim - 2; a >= 0; --a) k = k * std::uint32_t(ncell[a]) + std::uint32_t(c[a]);
+    return k;
+  }
+
+  CASCADE_HD std::uint32_t key_of(const Vec<Real, Dim>& x) const {
+    if (!contains(x)) return kOutsideKey;
+    int c[Dim];
+    for (int a = 0; a < Dim; ++a) c[a] = cell_coordinate(x[a], a);
+    return key(c);
+  }
+
+  // x_i - x_j, the nearest periodic image along periodic axes.
+  CASCADE_HD Vec<Real, Dim> displacement(const Vec<Real, Dim>& xi, const Vec<Real, Dim>& xj) const {
+    Vec<Real, Dim> d = xi - xj;
+    for (int a = 0; a < Dim; ++a)
+      if (periodic[a]) d[a] -= length[a] * Real(std::rint(d[a] / length[a]));
+    return d;
+  }
+
+  // Wraps a position back into the domain along periodic axes.
+  CASCADE_HD void wrap(Vec<Real, Dim>& x) const {
+    for (int a = 0; a < Dim; ++a)
+      if (periodic[a]) x[a] -= length[a] * Real(std::floor((x[a] - origin[a]) / length[a]));
+  }
+
+  // Calls f(j, x_ij, r²) for every particle j with |x_ij| < 2h around position x (j may be the
+  // particle at x itself, with x_ij = 0). Cells are visited in a fixed order, so sums over
+  // neighbours are deterministic.
+  template <typename F>
+  CASCADE_HD void for_each_neighbour(const Vec<Real, Dim>& x, const Vec<Real, Dim>* position, F&& f) const {
+    int c[Dim];
+    for (int a = 0; a < Dim; ++a) c[a] = cell_coordinate(x[a], a);
+    if constexpr (Dim == 2) {
+      for (int dz = -1; dz <= 1; ++dz) {
+        int cc[2] = {0, c[1] + dz};
+        if (!wrap_cell(cc[1], 1)) continue;
+        visit_row(x, c[0], cc, position, f);
+      }
+    } else {
+      for (int dz = -1; dz <= 1; ++dz) {
+        for (int dy = -1; dy <= 1; ++dy) {
+          int cc[3] = {0, c[1] + dy, c[2] + dz};
+          if (!wrap_cell(cc[1], 1) || !wrap_cell(cc[2], 2)) continue;
+          visit_row(x, c[0], cc, position, f);
+        }
+      }
+    }
+  }
+
+ private:
+  CASCADE_HD bool wrap_cell(int& c, int axis) const {
+    if (c >= 0 && c < ncell[axis]) return true;
+    if (!periodic[axis]) return false;
+    c = (c + ncell[axis]) % ncell[axis];
+    return true;
+  }
+
+  // The three cells cx-1..cx+1 of one row along x; contiguous in memory unless the row wraps.
+  template <typename F>
+  CASCADE_HD void visit_row(const Vec<Real, Dim>& x, int cx, int* cc, const Vec<Real, Dim>* position, F& f) const {
+    const int n0 = ncell[0];
+    int lo = cx - 1, hi = cx + 1;
+    if (!periodic[0] || (lo >= 0 && hi < n0)) {
+      if (lo < 0) lo = 0;
+      if (hi > n0 - 1) hi = n0 - 1;
+      cc[0] = lo;
+      const std::uint32_t begin = cell_start[key(cc)];
+      cc[0] = hi;
+      const std::uint32_t end = cell_start[key(cc) + 1];
+      visit_range(x, begin, end, position, f);
+    } else {
+      for (int dx = -1; dx <= 1; ++dx) {
+        cc[0] = (cx + dx + n0) % n0;
+        const std::uint32_t k = key(cc);
+        visit_range(x, cell_start[k], cell_start[k + 1], position, f);
+      }
+    }
+  }
+
+  template <typename F>
+  CASCADE_HD void visit_range(const Vec<Real, Dim>& x, std::uint32_t begin, std::uint32_t end,
+                              const Vec<Real, Dim>* position, F& f) const {
+    for (std::uint32_t j = begin; j < end; ++j) {
+      const Vec<Real, Dim> d = displacement(x, position[j]);
+      const Real r2 = d.squaredNorm();
+      if (r2 < support2) f(j, d, r2);
+    }
+  }
+};
+
+}  // namespace cascade

@@ -1,0 +1,45 @@
+// Probes evaluated on a frame (docs/output.md, "probes.csv"):
+//  point      a field interpolated at a position from one phase (Shepard interpolation with the
+//             Wendland kernel: Σ f_j W_j V_j / Σ W_j V_j, V_j = m/ρ_j)
+//  elevation  the water surface above a vertical line: going up from the lowest water particle
+//             within 2h of the line, the height where the kernel-weighted water fraction
+//             Σ V_j W(x − x_j) first drops below 1/2 (the wave-gauge rule of DualSPHysics)
+//  front      the largest (or smallest) coordinate of a phase along an axis, minus `origin`
+//  max, mean  of a field over a phase
+// A probe with nothing to measure (no particle of its phase near it) gives NaN.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cascade/v1/scenario.pb.h"
+#include "server/core/field_frame.h"
+
+namespace cascade {
+
+class ProbeSampler {
+ public:
+  ProbeSampler(const v1::ScenarioSpec& spec, double h, double particle_mass);
+
+  std::vector<std::string> names() const;
+  std::vector<double> sample(const FieldFrame& frame) const;
+
+  // One scalar per particle for a probe field name (pressure, density, speed, velocity_x/y/z).
+  static std::vector<double> scalar_field(const FieldFrame& frame, const std::string& name);
+
+ private:
+  double point(const v1::Probe& probe, const FieldFrame& frame) const;
+  double elevation(const v1::Probe& probe, const FieldFrame& frame) const;
+  double front(const v1::Probe& probe, const FieldFrame& frame) const;
+  double reduce(const v1::Probe& probe, const FieldFrame& frame) const;
+  double kernel(double r) const;
+
+  std::vector<v1::Probe> probes_;
+  int dimensions_;
+  double h_;
+  double mass_;
+  double alpha_d_;
+  double top_;  // domain top (z): where an elevation scan stops
+};
+
+}  // namespace cascade

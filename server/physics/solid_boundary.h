@@ -1,0 +1,102 @@
+// Solid boundaries: dummy particles whose values come from their ghost nodes (Section 3.3.1).
+// A field at the ghost node g is interpolated from the water with first-order consistency
+// (Eqs. 30, 31), extrapolated to the dummy particle b with a first-order Taylor series (Eq. 32),
+// or taken from the Shepard interpolant (Eq. 33) when |det A_g| < 10⁻³. Velocities use the Shepard
+// interpolant (Eq. 34) and the dummy particle takes the opposite of the ghost's (Eq. 35a): no slip
+// and no penetration.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "server/core/neighbour_grid.h"
+#include "server/core/particle_view.h"
+#include "server/core/small_matrix.h"
+#include "server/physics/equation_of_state.h"
+
+namespace cascade {
+
+// Accumulates A_g (Eq. 31) and the right-hand side of Eq. 30 for NumFields scalar fields over
+// neighbours of a ghost node. Soil stress and pore-water density reuse it with more fields.
+template <typename Real, int Dim, int NumFields>
+struct GhostInterpolation {
+  static constexpr int N = Dim + 1;
+  using Matrix = Eigen::Matrix<Real, N, N>;
+  using Moments = Eigen::Matrix<Real, N, NumFields>;
+  using Values = Eigen::Matrix<Real, NumFields, 1>;
+
+  Matrix a = Matrix::Zero();
+  Moments rhs = Moments::Zero();
+  Real shepard = 0;                                   // Σ_j W_gj V_j
+  Vec<Real, Dim> velocity = Vec<Real, Dim>::Zero();   // Σ_j v_j W_gj V_j
+
+  // x_gj = x_g − x_j; grad_w = ∇_g W_gj.
+  CASCADE_HD void add(Real volume, Real w, const Vec<Real, Dim>& grad_w, const Vec<Real, Dim>& x_gj,
+                      const Values& values, const Vec<Real, Dim>& v_j) {
+    Eigen::Matrix<Real, N, 1> weights;  // (W, ∂_x W, ∂_y W, ∂_z W) V_j
+    weights(0) = w * volume;
+    for (int a_ = 0; a_ < Dim; ++a_) weights(1 + a_) = grad_w[a_] * volume;
+    Eigen::Matrix<Real, N, 1> offsets;  // (1, x_j − x_g, ...)
+    offsets(0) = Real(1);
+    for (int a_ = 0; a_ < Dim; ++a_) offsets(1 + a_) = -x_gj[a_];
+    a += weights * offsets.transpose();
+    rhs += weights * values.transpose();
+    shepard += w * volume;
+    velocity += (w * volume) * v_j;
+  }
+
+  bool CASCADE_HD empty() const { return !(shepard > Real(0)); }
+
+  // Values extrapolated to the dummy particle at x_b (Eq. 32), or the Shepard values (Eq. 33).
+  CASCADE_HD Values extrapolate(const Vec<Real, Dim>& x_b, const Vec<Real, Dim>& x_g) const {
+    const Real det = determinant(a);
+    if (std::fabs(det) >= Real(1e-3)) {
+      const Moments solution = inverse(a, det) * rhs;  // row 0: value at g; rows 1..Dim: gradient
+      Values out = solution.row(0).transpose();
+      const Vec<Real, Dim> offset = x_b - x_g;
+      for (int a_ = 0; a_ < Dim; ++a_) out += offset[a_] * solution.row(1 + a_).transpose();
+      return out;
+    }
+    return rhs.row(0).transpose() / shepard;
+  }
+
+  // Eq. 34a: Shepard-interpolated velocity at the ghost node.
+  CASCADE_HD Vec<Real, Dim> ghost_velocity() const { return velocity / shepard; }
+};
+
+// Water side of the solid boundary: ρ_w and p_w of each dummy particle from the water around its
+// ghost node (Eqs. 30-33b), velocity from Eqs. 34a, 35a. A dummy particle with no water near its
+// ghost node rests at ρ_w0.
+template <typename Real, int Dim>
+struct SolidBoundaryWater {
+  ParticleView<Real, Dim> p;
+  GridView<Real, Dim> grid;
+  SphConstants<Real, Dim> sph;
+  WaterConstants<Real> water;
+
+  CASCADE_HD void operator()(std::uint32_t b) const {
+    if (p.phase[b] != Phase::boundary) return;
+    const Vec<Real, Dim> x_g = p.ghost[b];
+    GhostInterpolation<Real, Dim, 1> ghost;
+    grid.for_each_neighbour(x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_gj, Real r2) {
+      if (p.phase[j] != Phase::water) return;
+      const Real r = std::sqrt(r2);
+      const Real volume = sph.mass / p.density[j];
+      Eigen::Matrix<Real, 1, 1> value;
+      value(0) = p.water_density[j];
+      ghost.add(volume, sph.kernel.value(r), sph.kernel.gradient_factor(r) * x_gj, x_gj, value, p.velocity[j]);
+    });
+    if (ghost.empty()) {
+      p.water_density[b] = water.rho0;
+      p.pressure[b] = 0;
+      p.velocity[b] = Vec<Real, Dim>::Zero();
+      return;
+    }
+    const Real rho_w = ghost.extrapolate(p.position[b], x_g)(0);
+    p.water_density[b] = rho_w;
+    p.pressure[b] = water.pressure(rho_w);
+    p.velocity[b] = -ghost.ghost_velocity();
+  }
+};
+
+}  // namespace cascade

@@ -1,0 +1,69 @@
+// The water particle's right-hand side: one pass over its neighbours sums the numerical density
+// rate (Eq. 22), the water continuity with δ-SPH diffusion (Eq. 23a), the momentum with
+// artificial viscosity (Eq. 23b) and the per-particle time-step limit (Eq. 40a, 40b).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "server/core/neighbour_grid.h"
+#include "server/core/particle_view.h"
+#include "server/physics/equation_of_state.h"
+#include "server/physics/numerical_density.h"
+#include "server/physics/water_continuity.h"
+#include "server/physics/water_momentum.h"
+
+namespace cascade {
+
+template <typename Real, int Dim>
+struct WaterInteraction {
+  ParticleView<Real, Dim> p;
+  GridView<Real, Dim> grid;
+  SphConstants<Real, Dim> sph;
+  WaterConstants<Real> water;
+
+  CASCADE_HD void operator()(std::uint32_t i) const {
+    if (p.phase[i] != Phase::water) return;
+    const Vec<Real, Dim> v_i = p.velocity[i];
+    const Real rho_i = p.density[i];
+    const Real rho_w_i = p.water_density[i];
+    const Real p_i = p.pressure[i];
+    const Vec<Real, Dim> grad_rho_i = p.water_density_gradient[i];
+    const Real alpha_c0 = water.alpha * water.c0;
+
+    Real divergence = 0;  // Σ V_j (v_i − v_j)·∇_i W_ij
+    Real diffusion = 0;   // Σ V_j ψ_ij·∇_i W_ij over water neighbours
+    Vec<Real, Dim> pressure_force = Vec<Real, Dim>::Zero();
+    Vec<Real, Dim> viscous = Vec<Real, Dim>::Zero();
+    Real max_mu = 0;
+
+    grid.for_each_neighbour(p.position[i], p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) {
+      if (j == i) return;
+      const Real rho_j = p.density[j];
+      const Real volume_j = sph.mass / rho_j;
+      const Vec<Real, Dim> grad_w = sph.kernel.gradient_factor(std::sqrt(r2)) * x_ij;
+      const Vec<Real, Dim> v_ij = v_i - p.velocity[j];
+      divergence += velocity_divergence_pair(volume_j, v_ij, grad_w);
+      pressure_force += pressure_force_pair(volume_j, p_i, p.pressure[j], grad_w);
+      const Real mu = viscosity_mu(sph.h, v_ij, x_ij, r2, sph.eta2);
+      max_mu = std::fmax(max_mu, std::fabs(mu));
+      viscous += artificial_viscosity_pair(alpha_c0, sph.mass, Real(0.5) * (rho_i + rho_j), mu, grad_w);
+      // Dummy particles take no part in the diffusion: it would move water mass into walls.
+      if (p.phase[j] == Phase::water)
+        diffusion += density_diffusion_pair(volume_j, rho_w_i, p.water_density[j], x_ij, r2, sph.eta2, grad_rho_i,
+                                            p.water_density_gradient[j], grad_w);
+    });
+
+    p.density_rate[i] = rho_i * divergence;
+    p.water_density_rate[i] = rho_w_i * divergence + water.delta * sph.h * water.c0 * diffusion;
+    const Vec<Real, Dim> acceleration = pressure_force / rho_i + viscous + sph.gravity;
+    p.acceleration[i] = acceleration;
+    // Eq. 40b (sound speed and the largest pair μ) and Eq. 40a (force); C0 applies after the min.
+    const Real dt_cv = sph.h / (water.c0 + max_mu);
+    const Real force = acceleration.norm();
+    const Real dt_f = force > Real(0) ? std::sqrt(sph.h / force) : dt_cv;
+    p.step_limit[i] = dt_cv < dt_f ? dt_cv : dt_f;
+  }
+};
+
+}  // namespace cascade

@@ -1,0 +1,33 @@
+// Water momentum (Eq. 23b with ERRATA.md) and Monaghan's artificial viscosity (Eq. 24c).
+#pragma once
+
+#include "server/core/types.h"
+
+namespace cascade {
+
+// One neighbour's −V_j (p_i + p_j) ∇_i W_ij. The sum is divided by ρ_i, the numerical density
+// that defines V_i = m/ρ_i, so that the pair force −V_i V_j (p_i + p_j) ∇_i W_ij acting on i is
+// exactly the opposite of the one acting on j and Σ m v is conserved to round-off
+// (docs/physics.md, "Water momentum").
+template <typename Real, int Dim>
+CASCADE_HD inline Vec<Real, Dim> pressure_force_pair(Real volume_j, Real p_i, Real p_j, const Vec<Real, Dim>& grad_w) {
+  return (-volume_j * (p_i + p_j)) * grad_w;
+}
+
+// μ_ij = h v_ij·x_ij / (|x_ij|² + η²) (Eq. 24c); also the pair term of the CFL limit (Eq. 40b).
+template <typename Real, int Dim>
+CASCADE_HD inline Real viscosity_mu(Real h, const Vec<Real, Dim>& v_ij, const Vec<Real, Dim>& x_ij, Real r2, Real eta2) {
+  return h * v_ij.dot(x_ij) / (r2 + eta2);
+}
+
+// α c_0 (m_j / ρ̄_ij) μ_ij ∇_i W_ij for approaching pairs (μ_ij < 0), else 0 (Eqs. 23b, 24c).
+// h appears once, inside μ_ij: the acceleration then has units m/s². Repulsive: μ < 0 and
+// ∇_i W_ij = F x_ij with F < 0 push i away from j.
+template <typename Real, int Dim>
+CASCADE_HD inline Vec<Real, Dim> artificial_viscosity_pair(Real alpha_c0, Real mass_j, Real mean_density, Real mu,
+                                                          const Vec<Real, Dim>& grad_w) {
+  if (mu >= Real(0)) return Vec<Real, Dim>::Zero();
+  return (alpha_c0 * mass_j / mean_density * mu) * grad_w;
+}
+
+}  // namespace cascade

@@ -1,0 +1,40 @@
+#include "server/scenario/engine_setup.h"
+
+#include "server/scenario/case_error.h"
+#include "server/scenario/particle_builder.h"
+
+namespace cascade {
+
+EngineConfig engine_config(const v1::ScenarioSpec& spec, const HostParticles& particles, Precision precision,
+                           Device device) {
+  EngineConfig c;
+  c.dimensions = spec.dimensions();
+  c.dp = spec.dp();
+  c.h = smoothing_length(spec);
+  for (int a = 0; a < c.dimensions; ++a) {
+    c.gravity[a] = a < spec.gravity_size() ? spec.gravity(a) : 0.0;
+    c.domain_min[a] = spec.domain().min(a);
+    c.domain_max[a] = spec.domain().max(a);
+    c.periodic[a] = a < spec.domain().periodic_size() && spec.domain().periodic(a);
+  }
+  int water = -1;
+  for (int m = 0; m < spec.materials_size(); ++m)
+    if (spec.materials(m).has_water()) {
+      water = m;
+      break;
+    }
+  if (water < 0) throw CaseError("materials", "the case needs a water material");
+  const auto& w = spec.materials(water).water();
+  c.water_density = w.density() > 0 ? w.density() : 1000.0;
+  c.sound_speed = water_sound_speed(spec, water, particles);
+  c.delta = w.has_delta() ? w.delta() : 0.1;
+  c.viscosity_alpha = w.has_viscosity_alpha() ? w.viscosity_alpha() : 0.01;
+  c.cfl = spec.numerics().cfl() > 0 ? spec.numerics().cfl() : 0.2;
+  c.max_dt = spec.numerics().max_dt();
+  c.min_dt = spec.numerics().min_dt() > 0 ? spec.numerics().min_dt() : 1e-12;
+  c.precision = precision;
+  c.device = device;
+  return c;
+}
+
+}  // namespace cascade

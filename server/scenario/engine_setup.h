@@ -1,0 +1,17 @@
+// ScenarioSpec + initial particles → the engine's constants (EngineConfig). The headless runner and
+// the server both start an engine through this one function.
+#pragma once
+
+#include "cascade/v1/scenario.pb.h"
+#include "server/core/engine.h"
+#include "server/core/host_particles.h"
+
+namespace cascade {
+
+// Fills every constant of the engine from the spec (defaults applied) and the particles (the
+// sound speed of Eq. 24a depends on the water's height). Throws CaseError naming the key when the
+// spec has no water material.
+EngineConfig engine_config(const v1::ScenarioSpec& spec, const HostParticles& particles, Precision precision,
+                           Device device = Device::cpu);
+
+}  // namespace cascade
