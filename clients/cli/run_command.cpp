@@ -109,29 +109,31 @@ class Outputs {
     probes_ = std::make_unique<ProbeCsvWriter>(dir / "probes.csv", sampler_.names());
   }
 
+  // `force` (the start and the end of the run) writes each output unless it already holds this time.
   void observe(const Engine& engine, bool force) {
     const double t = engine.time();
-    const bool frame_due = force || t >= next_frame_ - 1e-12 * frame_interval_;
-    const bool probe_due = force || t >= next_probe_ - 1e-12 * probe_interval_;
+    const double frame_slack = 1e-12 * frame_interval_, probe_slack = 1e-12 * probe_interval_;
+    const bool frame_due = force ? t != last_frame_time_ : t >= next_frame_ - frame_slack;
+    const bool probe_due = force ? t != last_probe_time_ : t >= next_probe_ - probe_slack;
     if (!frame_due && !probe_due) return;
-    if (force && t == last_time_) return;  // the end coincides with a regular output
     const FieldFrame frame = engine.frame();
     if (probe_due) {
       probes_->write_row(t, sampler_.sample(frame));
-      while (next_probe_ <= t) next_probe_ += probe_interval_;
+      while (next_probe_ <= t + probe_slack) next_probe_ += probe_interval_;
+      last_probe_time_ = t;
     }
     if (frame_due) {
       if (hdf5_) hdf5_->write(frame);
       if (vtk_) vtk_->write(frame);
-      while (next_frame_ <= t) next_frame_ += frame_interval_;
+      while (next_frame_ <= t + frame_slack) next_frame_ += frame_interval_;
+      last_frame_time_ = t;
     }
-    last_time_ = t;
   }
 
  private:
   ProbeSampler sampler_;
   double frame_interval_, probe_interval_;
-  double next_frame_ = 0, next_probe_ = 0, last_time_ = -1;
+  double next_frame_ = 0, next_probe_ = 0, last_frame_time_ = -1, last_probe_time_ = -1;
   std::unique_ptr<Hdf5FieldWriter> hdf5_;
   std::unique_ptr<VtkSeriesWriter> vtk_;
   std::unique_ptr<ProbeCsvWriter> probes_;
@@ -146,7 +148,13 @@ int run_command(const std::vector<std::string>& args) {
   try {
     options = parse_options(args);
     spec = load_case_file(options.case_path, options.overrides);
-    set = build_particle_set(spec);
+    try {
+      set = build_particle_set(spec);
+    } catch (const CaseError& e) {
+      // The particle builder's errors name the key but neither file nor line: name the file.
+      std::fprintf(stderr, "cascade run: %s: %s\n", options.case_path.c_str(), e.what());
+      return 2;
+    }
   } catch (const CaseError& e) {
     std::fprintf(stderr, "cascade run: %s\n", e.what());
     return 2;

@@ -1,0 +1,72 @@
+"""Shared helpers for the process-level tests of the `cascade` executable (tests/cli/test_*.py).
+
+tests/CMakeLists.txt runs each test_*.py as
+    /usr/bin/python3 tests/cli/test_NAME.py --cascade PATH --source-dir REPO --work-dir DIR
+and the scripts are unittest programs. Run one by hand the same way, e.g.
+    /usr/bin/python3 tests/cli/test_lifecycle.py --cascade build/release/bin/cascade \
+        --source-dir . --work-dir /tmp/cli_lifecycle
+"""
+
+import argparse
+import pathlib
+import shutil
+import subprocess
+import sys
+import unittest
+
+CASCADE = None     # pathlib.Path of the executable
+SOURCE_DIR = None  # the repository root
+WORK_DIR = None    # a scratch folder of this test script, emptied at the start
+
+
+def main():
+    global CASCADE, SOURCE_DIR, WORK_DIR
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--cascade", required=True)
+    parser.add_argument("--source-dir", required=True)
+    parser.add_argument("--work-dir", required=True)
+    args, rest = parser.parse_known_args()
+    CASCADE = pathlib.Path(args.cascade).resolve()
+    SOURCE_DIR = pathlib.Path(args.source_dir).resolve()
+    WORK_DIR = pathlib.Path(args.work_dir).resolve()
+    if not CASCADE.is_file():
+        sys.exit(f"no cascade executable at {CASCADE}")
+    if WORK_DIR.exists():
+        shutil.rmtree(WORK_DIR)
+    WORK_DIR.mkdir(parents=True)
+    unittest.main(argv=[sys.argv[0]] + rest, verbosity=2)
+
+
+def case(name):
+    """A case file of the repository: case("hydrostatic_tank_2d") → cases/hydrostatic_tank_2d.yaml."""
+    return SOURCE_DIR / "cases" / f"{name}.yaml"
+
+
+def run(*args, timeout=60):
+    """Runs `cascade ARGS...` to the end; returns the CompletedProcess (text stdout and stderr)."""
+    return subprocess.run([str(CASCADE), *map(str, args)], capture_output=True, text=True, timeout=timeout,
+                          cwd=WORK_DIR)
+
+
+def out_dir(name):
+    """A fresh, not yet existing output folder under the work dir."""
+    d = WORK_DIR / name
+    if d.exists():
+        shutil.rmtree(d)
+    return d
+
+
+def read_probes(path):
+    """probes.csv → (header list, rows as lists of floats)."""
+    lines = pathlib.Path(path).read_text().splitlines()
+    header = lines[0].split(",")
+    rows = [[float(v) for v in line.split(",")] for line in lines[1:] if line]
+    return header, rows
+
+
+def import_h5py():
+    try:
+        import h5py  # noqa: F401  (Debian's python3-h5py, with /usr/bin/python3)
+        return h5py
+    except ImportError:
+        raise AssertionError(f"h5py is missing from {sys.executable}: install python3-h5py (Debian)")
