@@ -23,7 +23,7 @@ void Progress::update(double sim_time, std::uint64_t steps, double dt) {
   draw(sim_time, steps, dt, false);
 }
 
-void Progress::finish(double sim_time, std::uint64_t steps) { draw(sim_time, steps, 0.0, true); }
+void Progress::finish(double sim_time, std::uint64_t steps, double dt) { draw(sim_time, steps, dt, true); }
 
 void Progress::draw(double sim_time, std::uint64_t steps, double dt, bool final_line) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();

@@ -12,7 +12,7 @@ class Progress {
   Progress(double end_time, std::FILE* out);
   // Called after every step; draws at most a few times a second.
   void update(double sim_time, std::uint64_t steps, double dt);
-  void finish(double sim_time, std::uint64_t steps);
+  void finish(double sim_time, std::uint64_t steps, double dt);
 
  private:
   void draw(double sim_time, std::uint64_t steps, double dt, bool final_line);

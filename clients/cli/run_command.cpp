@@ -209,7 +209,7 @@ int run_command(const std::vector<std::string>& args) {
       }
     }
     outputs.observe(*engine, true);
-    progress.finish(engine->time(), engine->step_count());
+    progress.finish(engine->time(), engine->step_count(), engine->last_dt());
     summary.status = RunSummary::Status::completed;
   } catch (const std::exception& e) {
     summary.status = RunSummary::Status::failed;

@@ -74,6 +74,7 @@ class CellSort {
     thrust::lower_bound(Backend::policy(), key_.begin(), key_.end(), thrust::counting_iterator<std::uint32_t>(0),
                         thrust::counting_iterator<std::uint32_t>(cells + 1), cell_start_.begin());
     active_ = cell_start_[cells];
+    grid_.particle_key = raw(key_);
   }
 
   template <typename T>

@@ -19,6 +19,7 @@ struct GridView {
   bool periodic[Dim];
   Real support2;           // (2h)²
   const std::uint32_t* cell_start = nullptr;  // ncells + 1 entries
+  const std::uint32_t* particle_key = nullptr;  // cell key of each particle, as sorted
 
   CASCADE_HD std::uint32_t cell_count() const {
     std::uint32_t n = 1;
@@ -82,6 +83,26 @@ struct GridView {
   CASCADE_HD void for_each_neighbour(const Vec<Real, Dim>& x, const Vec<Real, Dim>* position, F&& f) const {
     int c[Dim];
     for (int a = 0; a < Dim; ++a) c[a] = cell_coordinate(x[a], a);
+    visit_cells(x, c, position, f);
+  }
+
+  // As for_each_neighbour around particle i, searching from the cell it was sorted into. Every
+  // particle is filed under its sorted cell until the next sort, so i finds j exactly when j
+  // finds i, even after the half-step has moved them: pair terms stay equal and opposite.
+  template <typename F>
+  CASCADE_HD void for_each_neighbour_of(std::uint32_t i, const Vec<Real, Dim>* position, F&& f) const {
+    int c[Dim];
+    std::uint32_t k = particle_key[i];
+    for (int a = 0; a < Dim; ++a) {
+      c[a] = int(k % std::uint32_t(ncell[a]));
+      k /= std::uint32_t(ncell[a]);
+    }
+    visit_cells(position[i], c, position, f);
+  }
+
+ private:
+  template <typename F>
+  CASCADE_HD void visit_cells(const Vec<Real, Dim>& x, const int* c, const Vec<Real, Dim>* position, F& f) const {
     if constexpr (Dim == 2) {
       for (int dz = -1; dz <= 1; ++dz) {
         int cc[2] = {0, c[1] + dz};
@@ -99,7 +120,6 @@ struct GridView {
     }
   }
 
- private:
   CASCADE_HD bool wrap_cell(int& c, int axis) const {
     if (c >= 0 && c < ncell[axis]) return true;
     if (!periodic[axis]) return false;

@@ -69,6 +69,10 @@ class Simulation final : public Engine {
     for (int a = 0; a < Dim; ++a) sph_.gravity[a] = Real(config.gravity[a]);
     water_ = WaterConstants<Real>{Real(config.water_density), Real(config.sound_speed), Real(config.delta),
                                   Real(config.viscosity_alpha)};
+    // Pressures of the initial state (Eq. 6 and the boundary extrapolation), so that frame 0 has them.
+    sort_by_cell();
+    launch(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_});
+    launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, sph_, water_});
   }
 
   void step() override {
@@ -187,13 +191,12 @@ class Simulation final : public Engine {
         Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
         thrust::counting_iterator<std::uint32_t>(std::uint32_t(active_)),
         StepLimitOf<Real>{raw(phase_), raw(step_limit_)}, std::numeric_limits<Real>::max(), MinimumOf<Real>());
+    if (limit < Real(0))
+      throw SimulationFailure("the state holds NaN or infinity at t = " + std::to_string(time_) + " s, step " +
+                              std::to_string(steps_) + " (a rate of change is not finite)");
     double dt = config_.cfl * double(limit);
-    if (config_.max_dt > 0 && dt > config_.max_dt) dt = config_.max_dt;
-    if (!std::isfinite(dt) || limit == std::numeric_limits<Real>::max()) {
-      if (limit == std::numeric_limits<Real>::max() && std::isfinite(dt)) return config_.max_dt > 0 ? config_.max_dt : dt;
-      throw SimulationFailure("non-finite time step at t = " + std::to_string(time_) + " s, step " +
-                              std::to_string(steps_) + ": the state holds NaN or infinity");
-    }
+    if (limit == std::numeric_limits<Real>::max()) dt = config_.max_dt > 0 ? config_.max_dt : 0.0;  // no water
+    else if (config_.max_dt > 0 && dt > config_.max_dt) dt = config_.max_dt;
     if (dt < config_.min_dt)
       throw SimulationFailure("time step " + std::to_string(dt) + " s fell below min_dt " +
                               std::to_string(config_.min_dt) + " s at t = " + std::to_string(time_) + " s");

@@ -5,7 +5,6 @@
 #include <limits>
 #include <stdexcept>
 
-#include "server/core/kernel.h"
 
 namespace cascade {
 
@@ -37,8 +36,27 @@ ProbeSampler::ProbeSampler(const v1::ScenarioSpec& spec, double h, double partic
       dimensions_(spec.dimensions()),
       h_(h),
       mass_(particle_mass),
-      alpha_d_(dimensions_ == 2 ? WendlandC2<double, 2>::normalisation(h) : WendlandC2<double, 3>::normalisation(h)),
-      top_(spec.domain().max(spec.dimensions() - 1)) {}
+      kernel2_(h),
+      kernel3_(h),
+      top_(spec.domain().max(spec.dimensions() - 1)) {
+  // Case axes (x, z) or (x, y, z) → frame axes (x, y, z).
+  const int frame_axis[3] = {0, dimensions_ == 2 ? 2 : 1, 2};
+  for (int a = 0; a < 3; ++a) lo_[a] = -std::numeric_limits<double>::infinity(), hi_[a] = -lo_[a];
+  for (int a = 0; a < dimensions_; ++a) {
+    const bool periodic = a < spec.domain().periodic_size() && spec.domain().periodic(a);
+    if (periodic) continue;
+    lo_[frame_axis[a]] = spec.domain().min(a);
+    hi_[frame_axis[a]] = spec.domain().max(a);
+  }
+}
+
+bool ProbeSampler::in_domain(const FieldFrame& frame, std::size_t j) const {
+  for (int a = 0; a < 3; ++a) {
+    const double x = frame.position[3 * j + a];
+    if (!(x >= lo_[a] && x <= hi_[a])) return false;
+  }
+  return true;
+}
 
 std::vector<std::string> ProbeSampler::names() const {
   std::vector<std::string> out;
@@ -62,12 +80,7 @@ std::vector<double> ProbeSampler::sample(const FieldFrame& frame) const {
   return out;
 }
 
-double ProbeSampler::kernel(double r) const {
-  const double q = r / h_;
-  if (q >= 2.0) return 0.0;
-  const double a = 1.0 - 0.5 * q;
-  return alpha_d_ * a * a * a * a * (2.0 * q + 1.0);
-}
+double ProbeSampler::kernel(double r) const { return dimensions_ == 2 ? kernel2_.value(r) : kernel3_.value(r); }
 
 std::vector<double> ProbeSampler::scalar_field(const FieldFrame& frame, const std::string& name) {
   const std::size_t n = frame.size();
@@ -95,7 +108,7 @@ double ProbeSampler::point(const v1::Probe& probe, const FieldFrame& frame) cons
   const std::uint8_t phase = phase_code(probe.phase());
   double sum = 0, weight = 0;
   for (std::size_t j = 0; j < frame.size(); ++j) {
-    if (frame.phase[j] != phase) continue;
+    if (frame.phase[j] != phase || !in_domain(frame, j)) continue;
     const double* p = &frame.position[3 * j];
     const double r = std::sqrt((p[0] - x[0]) * (p[0] - x[0]) + (p[1] - x[1]) * (p[1] - x[1]) + (p[2] - x[2]) * (p[2] - x[2]));
     const double w = kernel(r);
@@ -120,7 +133,7 @@ double ProbeSampler::elevation(const v1::Probe& probe, const FieldFrame& frame) 
   std::vector<Near> column;
   double lowest = std::numeric_limits<double>::max();
   for (std::size_t j = 0; j < frame.size(); ++j) {
-    if (frame.phase[j] != 0) continue;
+    if (frame.phase[j] != 0 || !in_domain(frame, j)) continue;
     const double* p = &frame.position[3 * j];
     const double d2 = (p[0] - x[0]) * (p[0] - x[0]) + (dimensions_ == 3 ? (p[1] - x[1]) * (p[1] - x[1]) : 0.0);
     if (d2 >= 4 * h_ * h_) continue;
@@ -149,7 +162,7 @@ double ProbeSampler::front(const v1::Probe& probe, const FieldFrame& frame) cons
   double best = probe.minimum() ? std::numeric_limits<double>::max() : std::numeric_limits<double>::lowest();
   bool any = false;
   for (std::size_t j = 0; j < frame.size(); ++j) {
-    if (frame.phase[j] != phase) continue;
+    if (frame.phase[j] != phase || !in_domain(frame, j)) continue;
     const double c = frame.position[3 * j + axis];
     best = probe.minimum() ? std::min(best, c) : std::max(best, c);
     any = true;
@@ -163,7 +176,7 @@ double ProbeSampler::reduce(const v1::Probe& probe, const FieldFrame& frame) con
   double best = std::numeric_limits<double>::lowest(), sum = 0;
   std::size_t count = 0;
   for (std::size_t j = 0; j < frame.size(); ++j) {
-    if (frame.phase[j] != phase) continue;
+    if (frame.phase[j] != phase || !in_domain(frame, j)) continue;
     best = std::max(best, values[j]);
     sum += values[j];
     ++count;

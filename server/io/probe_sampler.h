@@ -6,7 +6,8 @@
 //             Σ V_j W(x − x_j) first drops below 1/2 (the wave-gauge rule of DualSPHysics)
 //  front      the largest (or smallest) coordinate of a phase along an axis, minus `origin`
 //  max, mean  of a field over a phase
-// A probe with nothing to measure (no particle of its phase near it) gives NaN.
+// A probe with nothing to measure (no particle of its phase near it) gives NaN. Particles that
+// have left the domain are ignored.
 #pragma once
 
 #include <string>
@@ -14,6 +15,7 @@
 
 #include "cascade/v1/scenario.pb.h"
 #include "server/core/field_frame.h"
+#include "server/core/kernel.h"
 
 namespace cascade {
 
@@ -33,12 +35,15 @@ class ProbeSampler {
   double front(const v1::Probe& probe, const FieldFrame& frame) const;
   double reduce(const v1::Probe& probe, const FieldFrame& frame) const;
   double kernel(double r) const;
+  bool in_domain(const FieldFrame& frame, std::size_t j) const;
 
   std::vector<v1::Probe> probes_;
   int dimensions_;
   double h_;
   double mass_;
-  double alpha_d_;
+  WendlandC2<double, 2> kernel2_;
+  WendlandC2<double, 3> kernel3_;
+  double lo_[3], hi_[3];  // domain box in frame coordinates; periodic axes unbounded
   double top_;  // domain top (z): where an elevation scan stops
 };
 

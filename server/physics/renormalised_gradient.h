@@ -34,7 +34,7 @@ struct RenormalisedDensityGradient {
     p.pressure[i] = water.pressure(rho_w_i);
     Mat<Real, Dim> moment = Mat<Real, Dim>::Zero();
     Vec<Real, Dim> sum = Vec<Real, Dim>::Zero();
-    grid.for_each_neighbour(p.position[i], p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) {
+    grid.for_each_neighbour_of(i, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) {
       if (j == i || p.phase[j] == Phase::soil) return;
       const Real volume = sph.mass / p.density[j];
       const Vec<Real, Dim> grad_w = sph.kernel.gradient_factor(std::sqrt(r2)) * x_ij;

@@ -1,5 +1,6 @@
 // Variable time step (Eq. 40d): Δt = C0 min_i(Δt_cv, Δt_f), the per-particle limits written by the
-// interaction pass (Eqs. 40a, 40b). The seepage limit (Eq. 40c) joins with the soil phase.
+// interaction pass (Eqs. 40a, 40b). The seepage limit (Eq. 40c) joins with the soil phase. A
+// particle whose rates are not finite writes a negative limit, so the minimum is negative.
 #pragma once
 
 #include <cstdint>

@@ -37,7 +37,7 @@ struct WaterInteraction {
     Vec<Real, Dim> viscous = Vec<Real, Dim>::Zero();
     Real max_mu = 0;
 
-    grid.for_each_neighbour(p.position[i], p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) {
+    grid.for_each_neighbour_of(i, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) {
       if (j == i) return;
       const Real rho_j = p.density[j];
       const Real volume_j = sph.mass / rho_j;
@@ -62,7 +62,9 @@ struct WaterInteraction {
     const Real dt_cv = sph.h / (water.c0 + max_mu);
     const Real force = acceleration.norm();
     const Real dt_f = force > Real(0) ? std::sqrt(sph.h / force) : dt_cv;
-    p.step_limit[i] = dt_cv < dt_f ? dt_cv : dt_f;
+    // A non-finite rate marks the limit negative, which fails the step (time_step.h).
+    const bool finite = std::isfinite(force) && std::isfinite(p.water_density_rate[i]) && std::isfinite(max_mu);
+    p.step_limit[i] = finite ? (dt_cv < dt_f ? dt_cv : dt_f) : Real(-1);
   }
 };
 

@@ -1,5 +1,7 @@
 #include "server/scenario/engine_setup.h"
 
+#include <string>
+
 #include "server/scenario/case_error.h"
 #include "server/scenario/particle_builder.h"
 
@@ -18,12 +20,23 @@ EngineConfig engine_config(const v1::ScenarioSpec& spec, const HostParticles& pa
     c.periodic[a] = a < spec.domain().periodic_size() && spec.domain().periodic(a);
   }
   int water = -1;
-  for (int m = 0; m < spec.materials_size(); ++m)
-    if (spec.materials(m).has_water()) {
-      water = m;
-      break;
-    }
+  for (int m = 0; m < spec.materials_size(); ++m) {
+    if (!spec.materials(m).has_water()) continue;
+    // The engine holds one set of water constants (ρ_w0, c_w0, δ, α): a second water material
+    // would start in a state its equation of state does not balance.
+    if (water >= 0)
+      throw CaseError("materials[" + std::to_string(m) + "]", "a case has one water material; '" +
+                                                             spec.materials(water).name() + "' is already one");
+    water = m;
+  }
   if (water < 0) throw CaseError("materials", "the case needs a water material");
+  // The hydrostatic start (particle_builder) measures depth along z: gravity must point down z.
+  for (int a = 0; a + 1 < c.dimensions; ++a)
+    if (a < spec.gravity_size() && spec.gravity(a) != 0.0)
+      for (int b = 0; b < spec.bodies_size(); ++b)
+        if (spec.bodies(b).initial().hydrostatic())
+          throw CaseError("bodies[" + std::to_string(b) + "].initial.hydrostatic",
+                          "a hydrostatic start needs gravity along -z only");
   const auto& w = spec.materials(water).water();
   c.water_density = w.density() > 0 ? w.density() : 1000.0;
   c.sound_speed = water_sound_speed(spec, water, particles);
