@@ -1,0 +1,75 @@
+// 2D dam break (cases/dam_break_2d.yaml, a = 0.146 m, column 2a high): the surge front against the
+// experiments of Martin & Moyce (1952, Phil. Trans. R. Soc. A 244, Table 2, n² = 2) and below
+// Ritter's dry-bed solution, x_front = a + 2 sqrt(g H0) t with H0 = 2a, i.e. Z = 1 + 2T.
+// Z = x_front / a, T = t sqrt(2g/a).
+//
+// Weakly compressible SPH leads the measured front by 10-20% at early times: the experiment's
+// column was released by a gate that took time to clear, a delay the simulations do not have
+// (Colagrossi & Landrini 2003, J. Comput. Phys. 191; Marrone et al. 2011, CMAME 200). Once the
+// surge is established its speed agrees: the test checks the front speed over T = 1.4-3.0 within
+// 10% and the position within 20%, before the front reaches the far wall (Z = 4).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "tests/validation/case_run.h"
+
+namespace cascade {
+namespace {
+
+struct Point {
+  double T, Z;
+};
+
+// Martin & Moyce (1952), Table 2, square-based column with n² = 2 (height 2a).
+const std::vector<Point> kMartinMoyce = {{0.41, 1.11}, {0.84, 1.22}, {1.19, 1.44}, {1.43, 1.67}, {1.63, 1.89},
+                                         {1.83, 2.11}, {1.98, 2.33}, {2.20, 2.56}, {2.32, 2.78}, {2.51, 3.00},
+                                         {2.65, 3.22}, {2.83, 3.44}, {2.98, 3.67}};
+
+double interpolate(const std::vector<Point>& curve, double T) {
+  for (std::size_t k = 1; k < curve.size(); ++k)
+    if (curve[k].T >= T) {
+      const double s = (T - curve[k - 1].T) / (curve[k].T - curve[k - 1].T);
+      return curve[k - 1].Z + s * (curve[k].Z - curve[k - 1].Z);
+    }
+  return curve.back().Z;
+}
+
+TEST(DamBreak2D, SurgeFrontAgainstMartinMoyceAndBelowRitter) {
+  testing::CaseRun run("dam_break_2d.yaml");
+  const double a = 0.146, g = 9.81;
+  const double time_scale = std::sqrt(2 * g / a);  // T = t · time_scale
+  std::vector<Point> simulated;
+  const double end = 3.05 / time_scale;
+  double next_sample = 0;
+  while (run.engine->time() < end) {
+    run.engine->step();
+    if (run.engine->time() < next_sample) continue;
+    next_sample += 0.002;
+    const auto water = testing::water_values(run.engine->frame(), "pressure");
+    const double front = *std::max_element(water.x.begin(), water.x.end());
+    simulated.push_back({run.engine->time() * time_scale, front / a});
+  }
+  ASSERT_EQ(run.engine->lost_particles(), 0u);
+
+  // Below Ritter's ideal-fluid front at every sample after the first step.
+  for (const auto& p : simulated)
+    if (p.T > 0.05) EXPECT_LT(p.Z, 1.0 + 2.0 * p.T) << "T = " << p.T;
+
+  for (const auto& m : kMartinMoyce) {
+    if (m.T < 0.8) continue;
+    const double z = interpolate(simulated, m.T);
+    EXPECT_NEAR(z, m.Z, 0.20 * m.Z) << "T = " << m.T;
+    std::printf("T = %.2f  Martin & Moyce Z = %.2f  SPH Z = %.3f  (%+.1f%%)  Ritter Z = %.2f\n", m.T, m.Z, z,
+                100 * (z - m.Z) / m.Z, 1 + 2 * m.T);
+  }
+  const double measured_speed = (interpolate(kMartinMoyce, 2.98) - interpolate(kMartinMoyce, 1.43)) / (2.98 - 1.43);
+  const double simulated_speed = (interpolate(simulated, 2.98) - interpolate(simulated, 1.43)) / (2.98 - 1.43);
+  std::printf("front speed dZ/dT over T = 1.43-2.98: Martin & Moyce %.3f, SPH %.3f\n", measured_speed, simulated_speed);
+  EXPECT_NEAR(simulated_speed, measured_speed, 0.10 * measured_speed);
+}
+
+}  // namespace
+}  // namespace cascade
