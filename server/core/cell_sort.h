@@ -19,12 +19,17 @@
 
 namespace cascade {
 
+// Sort key 2 k + (dummy) of cell k (neighbour_grid.h); kOutsideKey outside the domain.
 template <typename Real, int Dim>
 struct CellKeyOf {
   GridView<Real, Dim> grid;
   const Vec<Real, Dim>* position;
+  const Phase* phase;
   std::uint32_t* key;
-  CASCADE_HD void operator()(std::uint32_t i) const { key[i] = grid.key_of(position[i]); }
+  CASCADE_HD void operator()(std::uint32_t i) const {
+    const std::uint32_t cell = grid.key_of(position[i]);
+    key[i] = cell == kOutsideKey ? kOutsideKey : 2 * cell + (phase[i] == Phase::boundary ? 1u : 0u);
+  }
 };
 
 template <typename Real, int Dim, typename Backend>
@@ -33,10 +38,14 @@ class CellSort {
   using Vector = typename Backend::template Vector<T>;
 
  public:
-  // Cells are at least 2h wide; along a periodic axis a whole number of them spans the period.
+  // Cells are at least search_radius / kReach wide; along a periodic axis a whole number of them
+  // spans the period, and at least 2 kReach + 1 of them, so that a search never visits a cell
+  // twice. The search radius is the kernel support 2h, or 2h and a skin for neighbour lists.
   CellSort(const std::array<double, 3>& domain_min, const std::array<double, 3>& domain_max,
-           const std::array<bool, 3>& periodic, double h) {
-    const double support = 2.0 * h;
+           const std::array<bool, 3>& periodic, double search_radius) {
+    constexpr int reach = GridView<Real, Dim>::kReach;
+    const double support = search_radius;
+    const double cell = support / reach;
     std::uint64_t cells = 1;
     for (int a = 0; a < Dim; ++a) {
       const double length = domain_max[a] - domain_min[a];
@@ -44,36 +53,36 @@ class CellSort {
       grid_.origin[a] = Real(domain_min[a]);
       grid_.length[a] = Real(length);
       grid_.periodic[a] = periodic[a];
-      int n = periodic[a] ? int(std::floor(length / support)) : int(std::ceil(length / support));
+      int n = periodic[a] ? int(std::floor(length / cell)) : int(std::ceil(length / cell));
       if (n < 1) n = 1;
-      if (periodic[a] && n < 3)
+      if (periodic[a] && (n < 2 * reach + 1 || length < 3 * support))
         throw std::invalid_argument("periodic axis " + std::to_string(a) +
-                                    " must span at least three kernel supports (6h)");
+                                    " must span at least three kernel supports (6h and the neighbour-list skin)");
       grid_.ncell[a] = n;
-      grid_.inv_cell[a] = Real(periodic[a] ? n / length : 1.0 / support);
+      grid_.inv_cell[a] = Real(periodic[a] ? n / length : 1.0 / cell);
       cells *= std::uint64_t(n);
     }
-    if (cells >= kOutsideKey) throw std::invalid_argument("domain holds too many cells for 32-bit cell keys");
-    grid_.support2 = Real(support * support);
-    cell_start_.resize(cells + 1);
+    if (2 * cells >= kOutsideKey) throw std::invalid_argument("domain holds too many cells for 32-bit cell keys");
+    grid_.search2 = Real(support * support);
+    cell_start_.resize(2 * cells + 1);
     grid_.cell_start = raw(cell_start_);
   }
 
   // Sorts by cell: afterwards order()[k] is the old index of the particle now at k; call
   // reorder() on every per-particle field. Particles outside the domain go last.
-  void sort(const Vector<Vec<Real, Dim>>& position) {
+  void sort(const Vector<Vec<Real, Dim>>& position, const Vector<Phase>& phase) {
     const std::size_t n = position.size();
     key_.resize(n);
     order_.resize(n);
     thrust::for_each(Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
                      thrust::counting_iterator<std::uint32_t>(std::uint32_t(n)),
-                     CellKeyOf<Real, Dim>{grid_, raw(position), raw(key_)});
+                     CellKeyOf<Real, Dim>{grid_, raw(position), raw(phase), raw(key_)});
     thrust::sequence(Backend::policy(), order_.begin(), order_.end());
     thrust::stable_sort_by_key(Backend::policy(), key_.begin(), key_.end(), order_.begin());
-    const std::uint32_t cells = grid_.cell_count();
+    const std::uint32_t groups = 2 * grid_.cell_count();
     thrust::lower_bound(Backend::policy(), key_.begin(), key_.end(), thrust::counting_iterator<std::uint32_t>(0),
-                        thrust::counting_iterator<std::uint32_t>(cells + 1), cell_start_.begin());
-    active_ = cell_start_[cells];
+                        thrust::counting_iterator<std::uint32_t>(groups + 1), cell_start_.begin());
+    active_ = cell_start_[groups];
     grid_.particle_key = raw(key_);
   }
 

@@ -1,6 +1,9 @@
 // Cell-linked neighbour grid. Particles are sorted by cell key every step so that the particles of
-// one cell, and of a row of cells along x, are contiguous in memory; `cell_start[k]` is the first
-// particle of cell k and `cell_start[ncells]` the number of particles inside the domain.
+// one cell, and of a row of cells along x, are contiguous in memory. Within a cell the moving
+// particles (water, soil) come before the fixed dummy particles: the sort key is 2 k + (dummy),
+// `cell_start[2k]` is the first particle of cell k, `cell_start[2k + 1]` its first dummy particle,
+// and `cell_start[2 ncells]` the number of particles inside the domain. Ghost nodes, which gather
+// from moving particles only, then skip the dummy particles without looking at them.
 #pragma once
 
 #include <cmath>
@@ -12,14 +15,18 @@ namespace cascade {
 
 template <typename Real, int Dim>
 struct GridView {
+  // Cells are half the kernel support (h) wide and a search spans two cells each way: 5^Dim cells
+  // of h hold 1.7 times fewer candidates than 3^Dim cells of 2h around a 2h sphere in 3D.
+  static constexpr int kReach = 2;
+
   Vec<Real, Dim> origin;   // domain minimum
   Vec<Real, Dim> length;   // domain extent
-  Real inv_cell[Dim];      // 1 / cell size per axis (cell size >= 2h)
+  Real inv_cell[Dim];      // 1 / cell size per axis (cell size >= 2h / kReach)
   int ncell[Dim];
   bool periodic[Dim];
-  Real support2;           // (2h)²
-  const std::uint32_t* cell_start = nullptr;  // ncells + 1 entries
-  const std::uint32_t* particle_key = nullptr;  // cell key of each particle, as sorted
+  Real search2;            // squared search radius: the kernel support 2h, or 2h and a skin
+  const std::uint32_t* cell_start = nullptr;  // 2 ncells + 1 entries
+  const std::uint32_t* particle_key = nullptr;  // sort key 2 k + (dummy) of each particle, as sorted
 
   CASCADE_HD std::uint32_t cell_count() const {
     std::uint32_t n = 1;
@@ -76,7 +83,7 @@ struct GridView {
       if (periodic[a]) x[a] -= length[a] * Real(std::floor((x[a] - origin[a]) / length[a]));
   }
 
-  // Calls f(j, x_ij, r²) for every particle j with |x_ij| < 2h around position x (j may be the
+  // Calls f(j, x_ij, r²) for every particle j with |x_ij|² < search2 around position x (j may be the
   // particle at x itself, with x_ij = 0). Cells are visited in a fixed order, so sums over
   // neighbours are deterministic.
   template <typename F>
@@ -86,13 +93,21 @@ struct GridView {
     visit_cells(x, c, position, f);
   }
 
+  // As for_each_neighbour, over the moving (non-dummy) particles only.
+  template <typename F>
+  CASCADE_HD void for_each_moving_neighbour(const Vec<Real, Dim>& x, const Vec<Real, Dim>* position, F&& f) const {
+    int c[Dim];
+    for (int a = 0; a < Dim; ++a) c[a] = cell_coordinate(x[a], a);
+    visit_cells<true>(x, c, position, f);
+  }
+
   // As for_each_neighbour around particle i, searching from the cell it was sorted into. Every
   // particle is filed under its sorted cell until the next sort, so i finds j exactly when j
   // finds i, even after the half-step has moved them: pair terms stay equal and opposite.
   template <typename F>
   CASCADE_HD void for_each_neighbour_of(std::uint32_t i, const Vec<Real, Dim>* position, F&& f) const {
     int c[Dim];
-    std::uint32_t k = particle_key[i];
+    std::uint32_t k = particle_key[i] >> 1;
     for (int a = 0; a < Dim; ++a) {
       c[a] = int(k % std::uint32_t(ncell[a]));
       k /= std::uint32_t(ncell[a]);
@@ -101,20 +116,20 @@ struct GridView {
   }
 
  private:
-  template <typename F>
+  template <bool MovingOnly = false, typename F>
   CASCADE_HD void visit_cells(const Vec<Real, Dim>& x, const int* c, const Vec<Real, Dim>* position, F& f) const {
     if constexpr (Dim == 2) {
-      for (int dz = -1; dz <= 1; ++dz) {
+      for (int dz = -kReach; dz <= kReach; ++dz) {
         int cc[2] = {0, c[1] + dz};
         if (!wrap_cell(cc[1], 1)) continue;
-        visit_row(x, c[0], cc, position, f);
+        visit_row<MovingOnly>(x, c[0], cc, position, f);
       }
     } else {
-      for (int dz = -1; dz <= 1; ++dz) {
-        for (int dy = -1; dy <= 1; ++dy) {
+      for (int dz = -kReach; dz <= kReach; ++dz) {
+        for (int dy = -kReach; dy <= kReach; ++dy) {
           int cc[3] = {0, c[1] + dy, c[2] + dz};
           if (!wrap_cell(cc[1], 1) || !wrap_cell(cc[2], 2)) continue;
-          visit_row(x, c[0], cc, position, f);
+          visit_row<MovingOnly>(x, c[0], cc, position, f);
         }
       }
     }
@@ -127,25 +142,27 @@ struct GridView {
     return true;
   }
 
-  // The three cells cx-1..cx+1 of one row along x; contiguous in memory unless the row wraps.
-  template <typename F>
+  // The cells cx-kReach..cx+kReach of one row along x: one contiguous range unless the row wraps
+  // or only the moving particles of each cell are wanted.
+  template <bool MovingOnly, typename F>
   CASCADE_HD void visit_row(const Vec<Real, Dim>& x, int cx, int* cc, const Vec<Real, Dim>* position, F& f) const {
     const int n0 = ncell[0];
-    int lo = cx - 1, hi = cx + 1;
-    if (!periodic[0] || (lo >= 0 && hi < n0)) {
+    int lo = cx - kReach, hi = cx + kReach;
+    if (!MovingOnly && (!periodic[0] || (lo >= 0 && hi < n0))) {
       if (lo < 0) lo = 0;
       if (hi > n0 - 1) hi = n0 - 1;
       cc[0] = lo;
-      const std::uint32_t begin = cell_start[key(cc)];
+      const std::uint32_t begin = cell_start[2 * key(cc)];
       cc[0] = hi;
-      const std::uint32_t end = cell_start[key(cc) + 1];
+      const std::uint32_t end = cell_start[2 * key(cc) + 2];
       visit_range(x, begin, end, position, f);
-    } else {
-      for (int dx = -1; dx <= 1; ++dx) {
-        cc[0] = (cx + dx + n0) % n0;
-        const std::uint32_t k = key(cc);
-        visit_range(x, cell_start[k], cell_start[k + 1], position, f);
-      }
+      return;
+    }
+    for (int cxn = lo; cxn <= hi; ++cxn) {
+      cc[0] = cxn;
+      if (!wrap_cell(cc[0], 0)) continue;
+      const std::uint32_t k = 2 * key(cc);
+      visit_range(x, cell_start[k], cell_start[k + (MovingOnly ? 1 : 2)], position, f);
     }
   }
 
@@ -155,7 +172,7 @@ struct GridView {
     for (std::uint32_t j = begin; j < end; ++j) {
       const Vec<Real, Dim> d = displacement(x, position[j]);
       const Real r2 = d.squaredNorm();
-      if (r2 < support2) f(j, d, r2);
+      if (r2 < search2) f(j, d, r2);
     }
   }
 };

@@ -15,6 +15,7 @@
 #include "server/core/backend.h"
 #include "server/core/engine.h"
 #include "server/core/cell_sort.h"
+#include "server/core/neighbour_list.h"
 #include "server/core/particle_view.h"
 #include "server/physics/renormalised_gradient.h"
 #include "server/physics/solid_boundary.h"
@@ -32,7 +33,9 @@ class Simulation final : public Engine {
 
  public:
   Simulation(const EngineConfig& config, const HostParticles& host)
-      : config_(config), cells_(config.domain_min, config.domain_max, config.periodic, config.h) {
+      : config_(config),
+        cells_(config.domain_min, config.domain_max, config.periodic, 2.0 * kListRadius * config.h),
+        neighbours_(config.h / config.dp) {
     const std::size_t n = host.size();
     if (host.dimensions != Dim) throw std::invalid_argument("particle set dimensions do not match the engine");
     std::vector<V> position(n), velocity(n), ghost(n);
@@ -72,7 +75,7 @@ class Simulation final : public Engine {
     // Pressures of the initial state (Eq. 6 and the boundary extrapolation), so that frame 0 has them.
     sort_by_cell();
     launch(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_});
-    launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, sph_, water_});
+    launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_});
   }
 
   void step() override {
@@ -102,7 +105,7 @@ class Simulation final : public Engine {
     add(density_), add(water_density_), add(pressure_), add(density_rate_), add(water_density_rate_);
     add(step_limit_), add(start_density_), add(start_water_density_), add(scratch_real_);
     add(phase_), add(scratch_phase_), add(id_), add(scratch_index_);
-    return bytes + cells_.bytes();
+    return bytes + cells_.bytes() + neighbours_.bytes();
   }
 
   FieldFrame frame() const override {
@@ -164,9 +167,10 @@ class Simulation final : public Engine {
     return {raw(start_position_), raw(start_velocity_), raw(start_density_), raw(start_water_density_)};
   }
 
-  // Sort particles by cell so that the neighbours of a cell row are contiguous (DESIGN.md).
+  // Sort particles by cell so that the neighbours of a cell row are contiguous (DESIGN.md), then
+  // list each moving particle's neighbours for the step's two rate evaluations.
   void sort_by_cell() {
-    cells_.sort(position_);
+    cells_.sort(position_, phase_);
     cells_.reorder(position_, scratch_vec_);
     cells_.reorder(velocity_, scratch_vec_);
     cells_.reorder(ghost_, scratch_vec_);
@@ -176,14 +180,15 @@ class Simulation final : public Engine {
     cells_.reorder(id_, scratch_index_);
     grid_ = cells_.view();
     active_ = cells_.active();
+    neighbours_.build(grid_, position_, phase_, active_);
   }
 
   // Right-hand sides at the current state: boundary values first (Eqs. 30-35), then pressure and
   // renormalised density gradients (Eqs. 6, 25), then the water interaction (Eqs. 22-24, 40).
   void evaluate_rates() {
     launch(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_});
-    launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, sph_, water_});
-    launch(WaterInteraction<Real, Dim>{view(), grid_, sph_, water_});
+    launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_});
+    launch(WaterInteraction<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_});
   }
 
   double next_time_step() {
@@ -214,6 +219,7 @@ class Simulation final : public Engine {
   SphConstants<Real, Dim> sph_{};
   WaterConstants<Real> water_{};
   CellSort<Real, Dim, Backend> cells_;
+  NeighbourList<Real, Dim, Backend> neighbours_;
   GridView<Real, Dim> grid_{};
   double time_ = 0;
   double dt_ = 0;

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "server/core/neighbour_grid.h"
+#include "server/core/neighbour_list.h"
 #include "server/core/particle_view.h"
 #include "server/core/small_matrix.h"
 #include "server/physics/equation_of_state.h"
@@ -23,6 +24,7 @@ template <typename Real, int Dim>
 struct RenormalisedDensityGradient {
   ParticleView<Real, Dim> p;
   GridView<Real, Dim> grid;
+  NeighbourListView<Real, Dim> neighbours;
   SphConstants<Real, Dim> sph;
   WaterConstants<Real> water;
 
@@ -34,7 +36,7 @@ struct RenormalisedDensityGradient {
     p.pressure[i] = water.pressure(rho_w_i);
     Mat<Real, Dim> moment = Mat<Real, Dim>::Zero();
     Vec<Real, Dim> sum = Vec<Real, Dim>::Zero();
-    grid.for_each_neighbour_of(i, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) {
+    neighbours.for_each(i, grid, sph.kernel.support2, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) {
       if (j == i || p.phase[j] == Phase::soil) return;
       const Real volume = sph.mass / p.density[j];
       const Vec<Real, Dim> grad_w = sph.kernel.gradient_factor(std::sqrt(r2)) * x_ij;

@@ -78,7 +78,7 @@ struct SolidBoundaryWater {
     if (p.phase[b] != Phase::boundary) return;
     const Vec<Real, Dim> x_g = p.ghost[b];
     GhostInterpolation<Real, Dim, 1> ghost;
-    grid.for_each_neighbour(x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_gj, Real r2) {
+    grid.for_each_moving_neighbour(x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_gj, Real r2) {
       if (p.phase[j] != Phase::water) return;
       const Real r = std::sqrt(r2);
       const Real volume = sph.mass / p.density[j];

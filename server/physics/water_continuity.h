@@ -10,11 +10,12 @@ namespace cascade {
 // With ∇_i W_ij = F(r) x_ij and F < 0 the first part is −2|F|(ρ_w,i − ρ_w,j): it diffuses.
 // For a linear density field the two parts cancel pair by pair, so hydrostatic water keeps its
 // density gradient. Eq. 23a multiplies the sum by δ h c_w0.
+// Takes 1/(|x_ij|² + η²), which μ_ij of Eq. 24c shares.
 template <typename Real, int Dim>
-CASCADE_HD inline Real density_diffusion_pair(Real volume_j, Real rho_w_i, Real rho_w_j, const Vec<Real, Dim>& x_ij, Real r2,
-                                              Real eta2, const Vec<Real, Dim>& grad_rho_i,
+CASCADE_HD inline Real density_diffusion_pair(Real volume_j, Real rho_w_i, Real rho_w_j, const Vec<Real, Dim>& x_ij,
+                                              Real inv_r2_eta2, const Vec<Real, Dim>& grad_rho_i,
                                               const Vec<Real, Dim>& grad_rho_j, const Vec<Real, Dim>& grad_w) {
-  const Vec<Real, Dim> psi = (Real(2) * (rho_w_i - rho_w_j) / (r2 + eta2)) * x_ij - (grad_rho_i + grad_rho_j);
+  const Vec<Real, Dim> psi = (Real(2) * (rho_w_i - rho_w_j) * inv_r2_eta2) * x_ij - (grad_rho_i + grad_rho_j);
   return volume_j * psi.dot(grad_w);
 }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "server/core/neighbour_grid.h"
+#include "server/core/neighbour_list.h"
 #include "server/core/particle_view.h"
 #include "server/physics/equation_of_state.h"
 #include "server/physics/numerical_density.h"
@@ -19,6 +20,7 @@ template <typename Real, int Dim>
 struct WaterInteraction {
   ParticleView<Real, Dim> p;
   GridView<Real, Dim> grid;
+  NeighbourListView<Real, Dim> neighbours;
   SphConstants<Real, Dim> sph;
   WaterConstants<Real> water;
 
@@ -37,7 +39,7 @@ struct WaterInteraction {
     Vec<Real, Dim> viscous = Vec<Real, Dim>::Zero();
     Real max_mu = 0;
 
-    grid.for_each_neighbour_of(i, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) {
+    neighbours.for_each(i, grid, sph.kernel.support2, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) {
       if (j == i) return;
       const Real rho_j = p.density[j];
       const Real volume_j = sph.mass / rho_j;
@@ -45,12 +47,13 @@ struct WaterInteraction {
       const Vec<Real, Dim> v_ij = v_i - p.velocity[j];
       divergence += velocity_divergence_pair(volume_j, v_ij, grad_w);
       pressure_force += pressure_force_pair(volume_j, p_i, p.pressure[j], grad_w);
-      const Real mu = viscosity_mu(sph.h, v_ij, x_ij, r2, sph.eta2);
+      const Real inv_r2_eta2 = Real(1) / (r2 + sph.eta2);
+      const Real mu = viscosity_mu(sph.h, v_ij, x_ij, inv_r2_eta2);
       max_mu = std::fmax(max_mu, std::fabs(mu));
-      viscous += artificial_viscosity_pair(alpha_c0, sph.mass, Real(0.5) * (rho_i + rho_j), mu, grad_w);
+      viscous += artificial_viscosity_pair(alpha_c0, sph.mass, rho_i, rho_j, mu, grad_w);
       // Dummy particles take no part in the diffusion: it would move water mass into walls.
       if (p.phase[j] == Phase::water)
-        diffusion += density_diffusion_pair(volume_j, rho_w_i, p.water_density[j], x_ij, r2, sph.eta2, grad_rho_i,
+        diffusion += density_diffusion_pair(volume_j, rho_w_i, p.water_density[j], x_ij, inv_r2_eta2, grad_rho_i,
                                             p.water_density_gradient[j], grad_w);
     });
 

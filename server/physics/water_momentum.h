@@ -15,19 +15,20 @@ CASCADE_HD inline Vec<Real, Dim> pressure_force_pair(Real volume_j, Real p_i, Re
 }
 
 // μ_ij = h v_ij·x_ij / (|x_ij|² + η²) (Eq. 24c); also the pair term of the CFL limit (Eq. 40b).
+// Takes 1/(|x_ij|² + η²), which the δ-term of Eq. 24b shares.
 template <typename Real, int Dim>
-CASCADE_HD inline Real viscosity_mu(Real h, const Vec<Real, Dim>& v_ij, const Vec<Real, Dim>& x_ij, Real r2, Real eta2) {
-  return h * v_ij.dot(x_ij) / (r2 + eta2);
+CASCADE_HD inline Real viscosity_mu(Real h, const Vec<Real, Dim>& v_ij, const Vec<Real, Dim>& x_ij, Real inv_r2_eta2) {
+  return h * v_ij.dot(x_ij) * inv_r2_eta2;
 }
 
-// α c_0 (m_j / ρ̄_ij) μ_ij ∇_i W_ij for approaching pairs (μ_ij < 0), else 0 (Eqs. 23b, 24c).
-// h appears once, inside μ_ij: the acceleration then has units m/s². Repulsive: μ < 0 and
-// ∇_i W_ij = F x_ij with F < 0 push i away from j.
+// α c_0 (m_j / ρ̄_ij) μ_ij ∇_i W_ij for approaching pairs (μ_ij < 0), else 0 (Eqs. 23b, 24c),
+// with ρ̄_ij = (ρ_i + ρ_j)/2. h appears once, inside μ_ij: the acceleration then has units m/s².
+// Repulsive: μ < 0 and ∇_i W_ij = F x_ij with F < 0 push i away from j.
 template <typename Real, int Dim>
-CASCADE_HD inline Vec<Real, Dim> artificial_viscosity_pair(Real alpha_c0, Real mass_j, Real mean_density, Real mu,
+CASCADE_HD inline Vec<Real, Dim> artificial_viscosity_pair(Real alpha_c0, Real mass_j, Real rho_i, Real rho_j, Real mu,
                                                           const Vec<Real, Dim>& grad_w) {
   if (mu >= Real(0)) return Vec<Real, Dim>::Zero();
-  return (alpha_c0 * mass_j / mean_density * mu) * grad_w;
+  return (Real(2) * alpha_c0 * mass_j / (rho_i + rho_j) * mu) * grad_w;
 }
 
 }  // namespace cascade

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "server/core/cell_sort.h"
+#include "server/core/neighbour_list.h"
 #include "server/core/particle_view.h"
 #include "server/physics/equation_of_state.h"
 
@@ -24,8 +25,10 @@ struct ParticleFixture {
   WaterConstants<double> water{1000.0, 20.0, 0.1, 0.01};
   GridView<double, Dim> grid{};
   std::unique_ptr<CellSort<double, Dim, Backend>> cells;
+  std::unique_ptr<NeighbourList<double, Dim, Backend>> neighbours;
+  double h_over_dp;
 
-  ParticleFixture(double dp, double h_over_dp) {
+  ParticleFixture(double dp, double h_over_dp_) : h_over_dp(h_over_dp_) {
     sph.h = h_over_dp * dp;
     sph.kernel = WendlandC2<double, Dim>(sph.h);
     sph.eta2 = 0.01 * sph.h * sph.h;
@@ -44,8 +47,8 @@ struct ParticleFixture {
 
   // Sorts by cell and sizes the rate arrays; call after adding particles and before kernels.
   void finish(const std::array<double, 3>& lo, const std::array<double, 3>& hi, const std::array<bool, 3>& periodic = {}) {
-    cells = std::make_unique<CellSort<double, Dim, Backend>>(lo, hi, periodic, sph.h);
-    cells->sort(position);
+    cells = std::make_unique<CellSort<double, Dim, Backend>>(lo, hi, periodic, 2 * kListRadius * sph.h);
+    cells->sort(position, phase);
     cells->reorder(position, scratch_vec);
     cells->reorder(velocity, scratch_vec);
     cells->reorder(ghost, scratch_vec);
@@ -53,6 +56,8 @@ struct ParticleFixture {
     cells->reorder(water_density, scratch_real);
     cells->reorder(phase, scratch_phase);
     grid = cells->view();
+    neighbours = std::make_unique<NeighbourList<double, Dim, Backend>>(h_over_dp);
+    neighbours->build(grid, position, phase, cells->active());
     const std::size_t n = position.size();
     for (auto* v : {&pressure, &density_rate, &water_density_rate, &step_limit}) v->assign(n, 0.0);
     for (auto* v : {&acceleration, &gradient}) v->assign(n, V::Zero());

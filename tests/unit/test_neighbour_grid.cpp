@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "server/core/cell_sort.h"
+#include "server/core/neighbour_list.h"
 
 namespace cascade {
 namespace {
@@ -26,26 +27,41 @@ void compare_with_brute_force(const std::array<bool, 3>& periodic, std::uint32_t
   host[7][0] = Real(hi[0] + 0.05);
   host[11][Dim - 1] = Real(lo[Dim - 1] - 0.01);
 
+  std::vector<Phase> host_phase(n);
+  for (auto& p : host_phase) p = std::uniform_int_distribution<int>(0, 2)(rng) == 2 ? Phase::boundary : Phase::water;
+
   using Backend = OmpBackend;
   typename Backend::template Vector<Vec<Real, Dim>> position(host.begin(), host.end()), scratch;
-  CellSort<Real, Dim, Backend> cells(lo, hi, periodic, h);
-  cells.sort(position);
+  typename Backend::template Vector<Phase> phase(host_phase.begin(), host_phase.end()), phase_scratch;
+  CellSort<Real, Dim, Backend> cells(lo, hi, periodic, 2 * h);
+  cells.sort(position, phase);
   cells.reorder(position, scratch);
+  cells.reorder(phase, phase_scratch);
   const auto grid = cells.view();
   std::vector<Vec<Real, Dim>> sorted(position.begin(), position.end());
+  std::vector<Phase> sorted_phase(phase.begin(), phase.end());
 
   const bool x_periodic = periodic[0];
   const std::size_t expected_active = n - (x_periodic ? 0 : 1) - (periodic[Dim - 1] ? 0 : 1);
   ASSERT_EQ(cells.active(), expected_active);
 
   const Real support2 = Real(4 * h * h);
+  // h/dp = 0.5: a small slot count, so that the builder has to grow it.
+  NeighbourList<Real, Dim, Backend> lists(0.5);
+  lists.build(grid, position, phase, cells.active());
+  const auto list_view = lists.view();
   for (std::size_t i = 0; i < cells.active(); ++i) {
-    std::set<std::uint32_t> found;
+    std::set<std::uint32_t> found, found_of, found_moving;
     grid.for_each_neighbour(sorted[i], sorted.data(), [&](std::uint32_t j, const Vec<Real, Dim>& d, Real r2) {
       EXPECT_TRUE(found.insert(j).second) << "neighbour visited twice";
       EXPECT_NEAR(double(d.squaredNorm()), double(r2), 1e-12);
     });
-    std::set<std::uint32_t> expected;
+    grid.for_each_neighbour_of(std::uint32_t(i), sorted.data(),
+                               [&](std::uint32_t j, const Vec<Real, Dim>&, Real) { found_of.insert(j); });
+    grid.for_each_moving_neighbour(sorted[i], sorted.data(), [&](std::uint32_t j, const Vec<Real, Dim>&, Real) {
+      EXPECT_TRUE(found_moving.insert(j).second) << "neighbour visited twice";
+    });
+    std::set<std::uint32_t> expected, expected_moving;
     for (std::uint32_t j = 0; j < cells.active(); ++j) {
       Vec<Real, Dim> d = sorted[i] - sorted[j];
       for (int a = 0; a < Dim; ++a)
@@ -53,9 +69,21 @@ void compare_with_brute_force(const std::array<bool, 3>& periodic, std::uint32_t
           const Real length = Real(hi[a] - lo[a]);
           d[a] -= length * std::rint(d[a] / length);
         }
-      if (d.squaredNorm() < support2) expected.insert(j);
+      if (d.squaredNorm() < support2) {
+        expected.insert(j);
+        if (sorted_phase[j] != Phase::boundary) expected_moving.insert(j);
+      }
     }
     ASSERT_EQ(found, expected) << "particle " << i;
+    ASSERT_EQ(found_of, expected) << "particle " << i;  // positions equal the sorted ones here
+    ASSERT_EQ(found_moving, expected_moving) << "particle " << i;
+    if (sorted_phase[i] != Phase::boundary) {
+      std::set<std::uint32_t> listed;
+      list_view.for_each(std::uint32_t(i), grid, support2, sorted.data(),
+                         [&](std::uint32_t j, const Vec<Real, Dim>&, Real) { EXPECT_TRUE(listed.insert(j).second); });
+      expected.erase(std::uint32_t(i));
+      ASSERT_EQ(listed, expected) << "neighbour list of particle " << i;
+    }
   }
 }
 
@@ -72,8 +100,9 @@ TEST(NeighbourGrid, SortIsByCellAndStable) {
   std::array<double, 3> lo{0, 0, 0}, hi{1, 1, 0};
   std::vector<Vec<double, 2>> host = {{0.9, 0.9}, {0.1, 0.1}, {0.12, 0.1}, {0.11, 0.1}, {0.9, 0.1}};
   typename Backend::template Vector<Vec<double, 2>> position(host.begin(), host.end()), scratch;
-  CellSort<double, 2, Backend> cells(lo, hi, {false, false, false}, 0.1);
-  cells.sort(position);
+  typename Backend::template Vector<Phase> phase(5, Phase::water);
+  CellSort<double, 2, Backend> cells(lo, hi, {false, false, false}, 0.2);
+  cells.sort(position, phase);
   cells.reorder(position, scratch);
   // The three particles of cell (0, 0) keep their original relative order.
   EXPECT_EQ(raw(position)[0], host[1]);
@@ -83,8 +112,26 @@ TEST(NeighbourGrid, SortIsByCellAndStable) {
   EXPECT_EQ(raw(position)[4], host[0]);
 }
 
+TEST(NeighbourGrid, MovingParticlesBeforeDummiesInEachCell) {
+  using Backend = OmpBackend;
+  std::array<double, 3> lo{0, 0, 0}, hi{1, 1, 0};
+  std::vector<Vec<double, 2>> host = {{0.1, 0.1}, {0.11, 0.1}, {0.12, 0.1}, {0.13, 0.1}};
+  std::vector<Phase> kinds = {Phase::boundary, Phase::water, Phase::boundary, Phase::soil};
+  typename Backend::template Vector<Vec<double, 2>> position(host.begin(), host.end()), scratch;
+  typename Backend::template Vector<Phase> phase(kinds.begin(), kinds.end()), phase_scratch;
+  CellSort<double, 2, Backend> cells(lo, hi, {false, false, false}, 0.2);
+  cells.sort(position, phase);
+  cells.reorder(position, scratch);
+  cells.reorder(phase, phase_scratch);
+  EXPECT_EQ(raw(position)[0], host[1]);
+  EXPECT_EQ(raw(position)[1], host[3]);
+  EXPECT_EQ(raw(position)[2], host[0]);
+  EXPECT_EQ(raw(position)[3], host[2]);
+  EXPECT_EQ(raw(phase)[3], Phase::boundary);
+}
+
 TEST(NeighbourGrid, RejectsPeriodicAxisShorterThanThreeSupports) {
-  EXPECT_THROW((CellSort<double, 2, OmpBackend>({0, 0, 0}, {0.05, 1, 0}, {true, false, false}, 0.01)),
+  EXPECT_THROW((CellSort<double, 2, OmpBackend>({0, 0, 0}, {0.05, 1, 0}, {true, false, false}, 0.02)),
                std::invalid_argument);
 }
 
