@@ -19,7 +19,8 @@
 
 namespace cascade {
 
-// Sort key 2 k + (dummy) of cell k (neighbour_grid.h); kOutsideKey outside the domain.
+// Sort key of a particle in cell k: k, or ncells + k for a dummy particle (neighbour_grid.h);
+// kOutsideKey outside the domain.
 template <typename Real, int Dim>
 struct CellKeyOf {
   GridView<Real, Dim> grid;
@@ -28,7 +29,7 @@ struct CellKeyOf {
   std::uint32_t* key;
   CASCADE_HD void operator()(std::uint32_t i) const {
     const std::uint32_t cell = grid.key_of(position[i]);
-    key[i] = cell == kOutsideKey ? kOutsideKey : 2 * cell + (phase[i] == Phase::boundary ? 1u : 0u);
+    key[i] = cell == kOutsideKey ? kOutsideKey : cell + (phase[i] == Phase::boundary ? grid.cell_count() : 0u);
   }
 };
 
@@ -83,6 +84,7 @@ class CellSort {
     thrust::lower_bound(Backend::policy(), key_.begin(), key_.end(), thrust::counting_iterator<std::uint32_t>(0),
                         thrust::counting_iterator<std::uint32_t>(groups + 1), cell_start_.begin());
     active_ = cell_start_[groups];
+    moving_ = cell_start_[groups / 2];
     grid_.particle_key = raw(key_);
   }
 
@@ -95,6 +97,7 @@ class CellSort {
 
   const GridView<Real, Dim>& view() const { return grid_; }
   std::size_t active() const { return active_; }  // particles inside the domain, first in order
+  std::size_t moving() const { return moving_; }  // moving particles inside the domain, first of all
   std::size_t bytes() const {
     return (key_.capacity() + order_.capacity() + cell_start_.capacity()) * sizeof(std::uint32_t);
   }
@@ -103,6 +106,7 @@ class CellSort {
   GridView<Real, Dim> grid_{};
   Vector<std::uint32_t> key_, order_, cell_start_;
   std::size_t active_ = 0;
+  std::size_t moving_ = 0;
 };
 
 }  // namespace cascade

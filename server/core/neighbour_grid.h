@@ -1,9 +1,9 @@
 // Cell-linked neighbour grid. Particles are sorted by cell key every step so that the particles of
-// one cell, and of a row of cells along x, are contiguous in memory. Within a cell the moving
-// particles (water, soil) come before the fixed dummy particles: the sort key is 2 k + (dummy),
-// `cell_start[2k]` is the first particle of cell k, `cell_start[2k + 1]` its first dummy particle,
-// and `cell_start[2 ncells]` the number of particles inside the domain. Ghost nodes, which gather
-// from moving particles only, then skip the dummy particles without looking at them.
+// one cell, and of a row of cells along x, are contiguous in memory. The moving particles (water,
+// soil) come first, then the fixed dummy particles, each block sorted by cell: the sort key of a
+// particle in cell k is k, or ncells + k for a dummy. `cell_start[k]` is the first particle with
+// key k and `cell_start[2 ncells]` the number of particles inside the domain. A row of cells is
+// one range in each block; ghost nodes, which gather from moving particles only, read one.
 #pragma once
 
 #include <cmath>
@@ -26,7 +26,7 @@ struct GridView {
   bool periodic[Dim];
   Real search2;            // squared search radius: the kernel support 2h, or 2h and a skin
   const std::uint32_t* cell_start = nullptr;  // 2 ncells + 1 entries
-  const std::uint32_t* particle_key = nullptr;  // sort key 2 k + (dummy) of each particle, as sorted
+  const std::uint32_t* particle_key = nullptr;  // sort key of each particle, as sorted
 
   CASCADE_HD std::uint32_t cell_count() const {
     std::uint32_t n = 1;
@@ -107,7 +107,9 @@ struct GridView {
   template <typename F>
   CASCADE_HD void for_each_neighbour_of(std::uint32_t i, const Vec<Real, Dim>* position, F&& f) const {
     int c[Dim];
-    std::uint32_t k = particle_key[i] >> 1;
+    const std::uint32_t cells = cell_count();
+    std::uint32_t k = particle_key[i];
+    if (k >= cells) k -= cells;
     for (int a = 0; a < Dim; ++a) {
       c[a] = int(k % std::uint32_t(ncell[a]));
       k /= std::uint32_t(ncell[a]);
@@ -142,27 +144,30 @@ struct GridView {
     return true;
   }
 
-  // The cells cx-kReach..cx+kReach of one row along x: one contiguous range unless the row wraps
-  // or only the moving particles of each cell are wanted.
+  // The cells cx-kReach..cx+kReach of one row along x: one contiguous range in each block (moving,
+  // dummy) unless the row wraps around a periodic axis.
   template <bool MovingOnly, typename F>
   CASCADE_HD void visit_row(const Vec<Real, Dim>& x, int cx, int* cc, const Vec<Real, Dim>* position, F& f) const {
     const int n0 = ncell[0];
+    const std::uint32_t cells = cell_count();
+    constexpr int blocks = MovingOnly ? 1 : 2;
     int lo = cx - kReach, hi = cx + kReach;
-    if (!MovingOnly && (!periodic[0] || (lo >= 0 && hi < n0))) {
+    if (!periodic[0] || (lo >= 0 && hi < n0)) {
       if (lo < 0) lo = 0;
       if (hi > n0 - 1) hi = n0 - 1;
       cc[0] = lo;
-      const std::uint32_t begin = cell_start[2 * key(cc)];
+      const std::uint32_t first = key(cc);
       cc[0] = hi;
-      const std::uint32_t end = cell_start[2 * key(cc) + 2];
-      visit_range(x, begin, end, position, f);
+      const std::uint32_t last = key(cc);
+      for (int b = 0; b < blocks; ++b)
+        visit_range(x, cell_start[b * cells + first], cell_start[b * cells + last + 1], position, f);
       return;
     }
     for (int cxn = lo; cxn <= hi; ++cxn) {
       cc[0] = cxn;
       if (!wrap_cell(cc[0], 0)) continue;
-      const std::uint32_t k = 2 * key(cc);
-      visit_range(x, cell_start[k], cell_start[k + (MovingOnly ? 1 : 2)], position, f);
+      const std::uint32_t k = key(cc);
+      for (int b = 0; b < blocks; ++b) visit_range(x, cell_start[b * cells + k], cell_start[b * cells + k + 1], position, f);
     }
   }
 

@@ -11,8 +11,6 @@
 #include <thrust/extrema.h>
 #include <thrust/for_each.h>
 #include <thrust/iterator/counting_iterator.h>
-#include <thrust/iterator/transform_iterator.h>
-#include <thrust/scan.h>
 
 #include <cmath>
 #include <cstdint>
@@ -25,9 +23,9 @@ namespace cascade {
 // The skin: lists hold neighbours within kListRadius · 2h.
 constexpr double kListRadius = 1.05;
 
+// Lists of the moving particles, which the cell sort puts first: list i belongs to particle i.
 template <typename Real, int Dim>
 struct NeighbourListView {
-  const std::uint32_t* slot;   // per particle: its list's index among the moving particles
   const std::uint32_t* count;  // per list: number of entries
   const std::uint32_t* index;  // per list: `capacity` entries
   std::uint32_t capacity;
@@ -36,9 +34,8 @@ struct NeighbourListView {
   template <typename F>
   CASCADE_HD void for_each(std::uint32_t i, const GridView<Real, Dim>& grid, Real support2,
                            const Vec<Real, Dim>* position, F&& f) const {
-    const std::uint32_t list = slot[i];
-    const std::uint32_t* entries = index + std::size_t(list) * capacity;
-    const std::uint32_t n = count[list];
+    const std::uint32_t* entries = index + std::size_t(i) * capacity;
+    const std::uint32_t n = count[i];
     const Vec<Real, Dim> x_i = position[i];
     for (std::uint32_t k = 0; k < n; ++k) {
       const std::uint32_t j = entries[k];
@@ -49,32 +46,23 @@ struct NeighbourListView {
   }
 };
 
-struct IsMoving {
-  const Phase* phase;
-  CASCADE_HD std::uint32_t operator()(std::uint32_t i) const { return phase[i] != Phase::boundary ? 1u : 0u; }
-};
-
 template <typename Real, int Dim>
 struct FillNeighbourList {
   GridView<Real, Dim> grid;
   const Vec<Real, Dim>* position;
-  const Phase* phase;
-  const std::uint32_t* slot;
   std::uint32_t* count;
   std::uint32_t* index;
   std::uint32_t capacity;
 
   CASCADE_HD void operator()(std::uint32_t i) const {
-    if (phase[i] == Phase::boundary) return;
-    const std::uint32_t list = slot[i];
-    std::uint32_t* entries = index + std::size_t(list) * capacity;
+    std::uint32_t* entries = index + std::size_t(i) * capacity;
     std::uint32_t n = 0;
-    grid.for_each_neighbour_of(i, position, [&](std::uint32_t j, const Vec<Real, Dim>&, Real) {
+    grid.for_each_neighbour_of(i, position, [&](std::uint32_t j, const Vec<Real, Dim>&, Real) CASCADE_INLINE {
       if (j == i) return;
       if (n < capacity) entries[n] = j;
       ++n;  // counts past the capacity: the builder sees the overflow and retries
     });
-    count[list] = n;
+    count[i] = n;
   }
 };
 
@@ -92,37 +80,30 @@ class NeighbourList {
     capacity_ = std::uint32_t(std::ceil(1.5 * lattice / 8.0) * 8.0);
   }
 
-  // Builds the lists of the first `active` particles (sorted by cell; `grid` searches with the
-  // list radius).
-  void build(const GridView<Real, Dim>& grid, const Vector<Vec<Real, Dim>>& position, const Vector<Phase>& phase,
-             std::size_t active) {
-    slot_.resize(position.size());
-    auto moving = thrust::make_transform_iterator(thrust::counting_iterator<std::uint32_t>(0), IsMoving{raw(phase)});
-    thrust::exclusive_scan(Backend::policy(), moving, moving + active, slot_.begin());
-    const std::size_t lists =
-        active == 0 ? 0 : std::size_t(slot_[active - 1]) + (Phase(phase[active - 1]) != Phase::boundary ? 1 : 0);
-    count_.resize(lists);
+  // Builds the lists of the first `moving` particles, the moving ones (sorted by cell; `grid`
+  // searches with the list radius).
+  void build(const GridView<Real, Dim>& grid, const Vector<Vec<Real, Dim>>& position, std::size_t moving) {
+    count_.resize(moving);
     for (;;) {
-      index_.resize(lists * capacity_);
+      index_.resize(moving * capacity_);
       thrust::for_each(Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
-                       thrust::counting_iterator<std::uint32_t>(std::uint32_t(active)),
-                       FillNeighbourList<Real, Dim>{grid, raw(position), raw(phase), raw(slot_), raw(count_),
-                                                    raw(index_), capacity_});
+                       thrust::counting_iterator<std::uint32_t>(std::uint32_t(moving)),
+                       FillNeighbourList<Real, Dim>{grid, raw(position), raw(count_), raw(index_), capacity_});
       const std::uint32_t longest =
-          lists == 0 ? 0 : *thrust::max_element(Backend::policy(), count_.begin(), count_.end());
+          moving == 0 ? 0 : *thrust::max_element(Backend::policy(), count_.begin(), count_.end());
       if (longest <= capacity_) break;
       capacity_ = (longest + longest / 4 + 7) / 8 * 8;
     }
   }
 
-  NeighbourListView<Real, Dim> view() const { return {raw(slot_), raw(count_), raw(index_), capacity_}; }
+  NeighbourListView<Real, Dim> view() const { return {raw(count_), raw(index_), capacity_}; }
   std::size_t bytes() const {
-    return (slot_.capacity() + count_.capacity() + index_.capacity()) * sizeof(std::uint32_t);
+    return (count_.capacity() + index_.capacity()) * sizeof(std::uint32_t);
   }
 
  private:
   std::uint32_t capacity_;
-  Vector<std::uint32_t> slot_, count_, index_;
+  Vector<std::uint32_t> count_, index_;
 };
 
 }  // namespace cascade

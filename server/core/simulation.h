@@ -61,6 +61,7 @@ class Simulation final : public Engine {
       v->resize(n);
     for (auto* v : {&acceleration_, &water_density_gradient_, &start_position_, &start_velocity_}) v->resize(n);
     scratch_vec_.resize(n);
+    ghost_wet_.resize(n);
     scratch_real_.resize(n);
     scratch_phase_.resize(n);
     scratch_index_.resize(n);
@@ -74,18 +75,18 @@ class Simulation final : public Engine {
                                   Real(config.viscosity_alpha)};
     // Pressures of the initial state (Eq. 6 and the boundary extrapolation), so that frame 0 has them.
     sort_by_cell();
-    launch(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_});
-    launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_});
+    launch(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_, raw(ghost_wet_), false}, moving_, active_);
+    launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, moving_);
   }
 
   void step() override {
     sort_by_cell();
-    evaluate_rates();
+    evaluate_rates(false);
     dt_ = next_time_step();
     save_step_start();
-    launch(SymplecticPredictor<Real, Dim>{view(), start_view(), grid_, Real(dt_)});
-    evaluate_rates();
-    launch(SymplecticCorrector<Real, Dim>{view(), start_view(), grid_, Real(dt_)});
+    launch(SymplecticPredictor<Real, Dim>{view(), start_view(), grid_, Real(dt_)}, 0, moving_);
+    evaluate_rates(true);
+    launch(SymplecticCorrector<Real, Dim>{view(), start_view(), grid_, Real(dt_)}, 0, moving_);
     time_ += dt_;
     ++steps_;
   }
@@ -104,7 +105,7 @@ class Simulation final : public Engine {
     add(start_position_), add(start_velocity_), add(scratch_vec_);
     add(density_), add(water_density_), add(pressure_), add(density_rate_), add(water_density_rate_);
     add(step_limit_), add(start_density_), add(start_water_density_), add(scratch_real_);
-    add(phase_), add(scratch_phase_), add(id_), add(scratch_index_);
+    add(phase_), add(scratch_phase_), add(ghost_wet_), add(id_), add(scratch_index_);
     return bytes + cells_.bytes() + neighbours_.bytes();
   }
 
@@ -152,10 +153,12 @@ class Simulation final : public Engine {
   }
 
  private:
+  // Runs f on particles [begin, end): the moving particles are [0, moving_), the dummy particles
+  // [moving_, active_) (cell_sort.h), so each pass runs on its own particles, evenly split.
   template <typename F>
-  void launch(const F& f) {
-    thrust::for_each(Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
-                     thrust::counting_iterator<std::uint32_t>(std::uint32_t(active_)), f);
+  void launch(const F& f, std::size_t begin, std::size_t end) {
+    thrust::for_each(Backend::policy(), thrust::counting_iterator<std::uint32_t>(std::uint32_t(begin)),
+                     thrust::counting_iterator<std::uint32_t>(std::uint32_t(end)), f);
   }
 
   ParticleView<Real, Dim> view() {
@@ -180,21 +183,22 @@ class Simulation final : public Engine {
     cells_.reorder(id_, scratch_index_);
     grid_ = cells_.view();
     active_ = cells_.active();
-    neighbours_.build(grid_, position_, phase_, active_);
+    moving_ = cells_.moving();
+    neighbours_.build(grid_, position_, moving_);
   }
 
   // Right-hand sides at the current state: boundary values first (Eqs. 30-35), then pressure and
   // renormalised density gradients (Eqs. 6, 25), then the water interaction (Eqs. 22-24, 40).
-  void evaluate_rates() {
-    launch(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_});
-    launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_});
-    launch(WaterInteraction<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_});
+  void evaluate_rates(bool half_step) {
+    launch(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_, raw(ghost_wet_), half_step}, moving_, active_);
+    launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, moving_);
+    launch(WaterInteraction<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, moving_);
   }
 
   double next_time_step() {
     const Real limit = thrust::transform_reduce(
         Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
-        thrust::counting_iterator<std::uint32_t>(std::uint32_t(active_)),
+        thrust::counting_iterator<std::uint32_t>(std::uint32_t(moving_)),
         StepLimitOf<Real>{raw(phase_), raw(step_limit_)}, std::numeric_limits<Real>::max(), MinimumOf<Real>());
     if (limit < Real(0))
       throw SimulationFailure("the state holds NaN or infinity at t = " + std::to_string(time_) + " s, step " +
@@ -225,12 +229,14 @@ class Simulation final : public Engine {
   double dt_ = 0;
   std::uint64_t steps_ = 0;
   std::size_t active_ = 0;
+  std::size_t moving_ = 0;
 
   Vector<V> position_, velocity_, ghost_, acceleration_, water_density_gradient_, start_position_, start_velocity_,
       scratch_vec_;
   Vector<Real> density_, water_density_, pressure_, density_rate_, water_density_rate_, step_limit_, start_density_,
       start_water_density_, scratch_real_;
   Vector<Phase> phase_, scratch_phase_;
+  Vector<std::uint8_t> ghost_wet_;
   Vector<std::uint32_t> id_, scratch_index_;
 };
 

@@ -31,7 +31,7 @@ struct GhostInterpolation {
   Vec<Real, Dim> velocity = Vec<Real, Dim>::Zero();   // Σ_j v_j W_gj V_j
 
   // x_gj = x_g − x_j; grad_w = ∇_g W_gj.
-  CASCADE_HD void add(Real volume, Real w, const Vec<Real, Dim>& grad_w, const Vec<Real, Dim>& x_gj,
+  CASCADE_HD CASCADE_INLINE void add(Real volume, Real w, const Vec<Real, Dim>& grad_w, const Vec<Real, Dim>& x_gj,
                       const Values& values, const Vec<Real, Dim>& v_j) {
     Eigen::Matrix<Real, N, 1> weights;  // (W, ∂_x W, ∂_y W, ∂_z W) V_j
     weights(0) = w * volume;
@@ -67,25 +67,35 @@ struct GhostInterpolation {
 // Water side of the solid boundary: ρ_w and p_w of each dummy particle from the water around its
 // ghost node (Eqs. 30-33b), velocity from Eqs. 34a, 35a. A dummy particle with no water near its
 // ghost node rests at ρ_w0.
+//
+// At the half step a dummy particle whose ghost had no water within the search radius (2h and
+// the neighbour-list skin) at the start of the step is skipped: the water has moved less than the
+// skin since, so the ghost still sees none and the rest values written then still hold.
 template <typename Real, int Dim>
 struct SolidBoundaryWater {
   ParticleView<Real, Dim> p;
   GridView<Real, Dim> grid;
   SphConstants<Real, Dim> sph;
   WaterConstants<Real> water;
+  std::uint8_t* wet = nullptr;  // per particle: water near the ghost at the step's start
+  bool half_step = false;
 
   CASCADE_HD void operator()(std::uint32_t b) const {
     if (p.phase[b] != Phase::boundary) return;
+    if (half_step && wet && !wet[b]) return;
     const Vec<Real, Dim> x_g = p.ghost[b];
     GhostInterpolation<Real, Dim, 1> ghost;
-    grid.for_each_moving_neighbour(x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_gj, Real r2) {
+    bool any_water = false;
+    grid.for_each_moving_neighbour(x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_gj, Real r2) CASCADE_INLINE {
       if (p.phase[j] != Phase::water) return;
+      any_water = true;
       const Real r = std::sqrt(r2);
       const Real volume = sph.mass / p.density[j];
       Eigen::Matrix<Real, 1, 1> value;
       value(0) = p.water_density[j];
       ghost.add(volume, sph.kernel.value(r), sph.kernel.gradient_factor(r) * x_gj, x_gj, value, p.velocity[j]);
     });
+    if (wet && !half_step) wet[b] = any_water ? 1 : 0;
     if (ghost.empty()) {
       p.water_density[b] = water.rho0;
       p.pressure[b] = 0;
