@@ -375,6 +375,10 @@ ParticleSet Builder::build() {
     out_.bodies[b].count = out_.particles.size() - out_.bodies[b].first;
     if (is_fluid_[b] && out_.bodies[b].count == 0)
       throw CaseError(body_key(b), "body '" + r.name + "' has no particles: region empty or covered by solids");
+    // A solid with no dummy particles would let water through without a word.
+    if (!is_fluid_[b] && out_.bodies[b].count == 0)
+      throw CaseError(body_key(b), "boundary body '" + r.name +
+                                       "' has no dummy particles: none of its surface faces the fluid inside the domain");
     check_inside_domain(b);
   }
   if (out_.particles.size() == 0) throw CaseError("domain", "the case has no particles");

@@ -428,6 +428,11 @@ TEST(ParticleBuilder, CaseErrorsNameTheKey) {
     set_domain(s, {0, 0}, {1, 1});
     EXPECT_EQ(error_key(s), "domain");
   }
+  {  // a floor whose only face lies on the domain's edge: no wetted surface, no dummy particles
+    ScenarioSpec s = tank_2d(1.3);
+    set_box(add_body(s, "buried_floor", v1::BOUNDARY)->mutable_shape(), {-0.06, -0.06}, {1.06, -0.04});
+    EXPECT_EQ(error_key(s), "bodies[2]");
+  }
 }
 
 TEST(Geometry, RegionSurfaceOfATankAndClosestPoints) {
