@@ -31,23 +31,10 @@ struct CudaBackend {
 };
 #endif
 
-template <typename T>
-T* raw(thrust::omp::vector<T>& v) {
+// The raw pointer to a backend vector's elements, for the views handed to kernels.
+template <typename Vector>
+auto raw(Vector& v) {
   return thrust::raw_pointer_cast(v.data());
 }
-template <typename T>
-const T* raw(const thrust::omp::vector<T>& v) {
-  return thrust::raw_pointer_cast(v.data());
-}
-#if defined(__CUDACC__)
-template <typename T>
-T* raw(thrust::cuda::vector<T>& v) {
-  return thrust::raw_pointer_cast(v.data());
-}
-template <typename T>
-const T* raw(const thrust::cuda::vector<T>& v) {
-  return thrust::raw_pointer_cast(v.data());
-}
-#endif
 
 }  // namespace cascade

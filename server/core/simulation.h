@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -239,5 +240,18 @@ class Simulation final : public Engine {
   Vector<std::uint8_t> ghost_wet_;
   Vector<std::uint32_t> id_, scratch_index_;
 };
+
+// The engine on one backend, in the precision and dimension the configuration asks for.
+template <typename Backend>
+std::unique_ptr<Engine> make_simulation(const EngineConfig& config, const HostParticles& particles) {
+  const bool single = config.precision == Precision::single_precision;
+  if (config.dimensions == 2)
+    return single ? std::unique_ptr<Engine>(std::make_unique<Simulation<float, 2, Backend>>(config, particles))
+                  : std::make_unique<Simulation<double, 2, Backend>>(config, particles);
+  if (config.dimensions == 3)
+    return single ? std::unique_ptr<Engine>(std::make_unique<Simulation<float, 3, Backend>>(config, particles))
+                  : std::make_unique<Simulation<double, 3, Backend>>(config, particles);
+  throw std::invalid_argument("dimensions must be 2 or 3");
+}
 
 }  // namespace cascade
