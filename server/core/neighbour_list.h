@@ -57,7 +57,7 @@ struct FillNeighbourList {
   CASCADE_HD void operator()(std::uint32_t i) const {
     std::uint32_t* entries = index + std::size_t(i) * capacity;
     std::uint32_t n = 0;
-    grid.for_each_neighbour_of(i, position, [&](std::uint32_t j, const Vec<Real, Dim>&, Real) CASCADE_INLINE {
+    grid.for_each_neighbour_of(i, position, [&](std::uint32_t j, const Vec<Real, Dim>&, Real) {
       if (j == i) return;
       if (n < capacity) entries[n] = j;
       ++n;  // counts past the capacity: the builder sees the overflow and retries

@@ -10,14 +10,6 @@
 #define CASCADE_HD
 #endif
 
-// For the per-neighbour lambdas and helpers: inlined into the neighbour loop, the sums they
-// accumulate stay in registers (GCC otherwise calls a large lambda once per pair).
-#if defined(__GNUC__)
-#define CASCADE_INLINE __attribute__((always_inline))
-#else
-#define CASCADE_INLINE
-#endif
-
 namespace cascade {
 
 // Fixed-size vectors and matrices; Eigen's fixed-size types work in device code.

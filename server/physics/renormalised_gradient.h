@@ -36,7 +36,7 @@ struct RenormalisedDensityGradient {
     p.pressure[i] = water.pressure(rho_w_i);
     Mat<Real, Dim> moment = Mat<Real, Dim>::Zero();
     Vec<Real, Dim> sum = Vec<Real, Dim>::Zero();
-    neighbours.for_each(i, grid, sph.kernel.support2, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) CASCADE_INLINE {
+    neighbours.for_each(i, grid, sph.kernel.support2, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) {
       if (j == i || p.phase[j] == Phase::soil) return;
       const Real volume = sph.mass / p.density[j];
       const Vec<Real, Dim> grad_w = sph.kernel.gradient_factor(std::sqrt(r2)) * x_ij;

@@ -31,7 +31,7 @@ struct GhostInterpolation {
   Vec<Real, Dim> velocity = Vec<Real, Dim>::Zero();   // Σ_j v_j W_gj V_j
 
   // x_gj = x_g − x_j; grad_w = ∇_g W_gj.
-  CASCADE_HD CASCADE_INLINE void add(Real volume, Real w, const Vec<Real, Dim>& grad_w, const Vec<Real, Dim>& x_gj,
+  CASCADE_HD void add(Real volume, Real w, const Vec<Real, Dim>& grad_w, const Vec<Real, Dim>& x_gj,
                       const Values& values, const Vec<Real, Dim>& v_j) {
     Eigen::Matrix<Real, N, 1> weights;  // (W, ∂_x W, ∂_y W, ∂_z W) V_j
     weights(0) = w * volume;
@@ -86,7 +86,7 @@ struct SolidBoundaryWater {
     const Vec<Real, Dim> x_g = p.ghost[b];
     GhostInterpolation<Real, Dim, 1> ghost;
     bool any_water = false;
-    grid.for_each_moving_neighbour(x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_gj, Real r2) CASCADE_INLINE {
+    grid.for_each_moving_neighbour(x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_gj, Real r2) {
       if (p.phase[j] != Phase::water) return;
       any_water = true;
       const Real r = std::sqrt(r2);

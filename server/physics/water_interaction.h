@@ -39,7 +39,7 @@ struct WaterInteraction {
     Vec<Real, Dim> viscous = Vec<Real, Dim>::Zero();
     Real max_mu = 0;
 
-    neighbours.for_each(i, grid, sph.kernel.support2, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) CASCADE_INLINE {
+    neighbours.for_each(i, grid, sph.kernel.support2, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) {
       if (j == i) return;
       const Real rho_j = p.density[j];
       const Real volume_j = sph.mass / rho_j;
