@@ -5,7 +5,7 @@
 #include <thrust/copy.h>
 #include <thrust/for_each.h>
 #include <thrust/iterator/counting_iterator.h>
-#include <thrust/transform_reduce.h>
+#include <thrust/reduce.h>
 
 #include <cmath>
 #include <limits>
@@ -197,10 +197,8 @@ class Simulation final : public Engine {
   }
 
   double next_time_step() {
-    const Real limit = thrust::transform_reduce(
-        Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
-        thrust::counting_iterator<std::uint32_t>(std::uint32_t(moving_)),
-        StepLimitOf<Real>{raw(phase_), raw(step_limit_)}, std::numeric_limits<Real>::max(), MinimumOf<Real>());
+    const Real limit = thrust::reduce(Backend::policy(), step_limit_.begin(), step_limit_.begin() + moving_,
+                                      std::numeric_limits<Real>::max(), MinimumOf<Real>());
     if (limit < Real(0))
       throw SimulationFailure("the state holds NaN or infinity at t = " + std::to_string(time_) + " s, step " +
                               std::to_string(steps_) + " (a rate of change is not finite)");
