@@ -19,8 +19,8 @@
 
 namespace cascade {
 
-// Sort key of a particle in cell k: k, or ncells + k for a dummy particle (neighbour_grid.h);
-// kOutsideKey outside the domain.
+// Sort key of a particle in cell k: block · ncells + k, the block being its phase (water 0,
+// soil 1, dummy 2; neighbour_grid.h); kOutsideKey outside the domain.
 template <typename Real, int Dim>
 struct CellKeyOf {
   GridView<Real, Dim> grid;
@@ -29,7 +29,7 @@ struct CellKeyOf {
   std::uint32_t* key;
   CASCADE_HD void operator()(std::uint32_t i) const {
     const std::uint32_t cell = grid.key_of(position[i]);
-    key[i] = cell == kOutsideKey ? kOutsideKey : cell + (phase[i] == Phase::boundary ? grid.cell_count() : 0u);
+    key[i] = cell == kOutsideKey ? kOutsideKey : cell + std::uint32_t(phase[i]) * grid.cell_count();
   }
 };
 
@@ -54,6 +54,9 @@ class CellSort {
       grid_.origin[a] = Real(domain_min[a]);
       grid_.length[a] = Real(length);
       grid_.periodic[a] = periodic[a];
+      grid_.any_periodic = grid_.any_periodic || periodic[a];
+      grid_.period[a] = periodic[a] ? Real(length) : Real(0);
+      grid_.inv_period[a] = periodic[a] ? Real(1.0 / length) : Real(0);
       int n = periodic[a] ? int(std::floor(length / cell)) : int(std::ceil(length / cell));
       if (n < 1) n = 1;
       if (periodic[a] && (n < 2 * reach + 1 || length < 3 * support))
@@ -63,9 +66,9 @@ class CellSort {
       grid_.inv_cell[a] = Real(periodic[a] ? n / length : 1.0 / cell);
       cells *= std::uint64_t(n);
     }
-    if (2 * cells >= kOutsideKey) throw std::invalid_argument("domain holds too many cells for 32-bit cell keys");
+    if (GridView<Real, Dim>::kBlocks * cells >= kOutsideKey) throw std::invalid_argument("domain holds too many cells for 32-bit cell keys");
     grid_.search2 = Real(support * support);
-    cell_start_.resize(2 * cells + 1);
+    cell_start_.resize(GridView<Real, Dim>::kBlocks * cells + 1);
     grid_.cell_start = raw(cell_start_);
   }
 
@@ -80,11 +83,14 @@ class CellSort {
                      CellKeyOf<Real, Dim>{grid_, raw(position), raw(phase), raw(key_)});
     thrust::sequence(Backend::policy(), order_.begin(), order_.end());
     thrust::stable_sort_by_key(Backend::policy(), key_.begin(), key_.end(), order_.begin());
-    const std::uint32_t groups = 2 * grid_.cell_count();
+    const std::uint32_t cells = grid_.cell_count();
+    const std::uint32_t groups = GridView<Real, Dim>::kBlocks * cells;
     thrust::lower_bound(Backend::policy(), key_.begin(), key_.end(), thrust::counting_iterator<std::uint32_t>(0),
                         thrust::counting_iterator<std::uint32_t>(groups + 1), cell_start_.begin());
     active_ = cell_start_[groups];
-    moving_ = cell_start_[groups / 2];
+    moving_ = cell_start_[2 * cells];
+    grid_.water_end = cell_start_[cells];
+    grid_.moving_end = std::uint32_t(moving_);
     grid_.particle_key = raw(key_);
   }
 

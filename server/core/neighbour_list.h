@@ -1,8 +1,10 @@
-// Neighbour lists of the moving particles, built once per step from the cell grid with a search
-// radius of 2h plus a skin, and read by every pass of the step's two rate evaluations. A list
-// entry is checked against the kernel support at the current positions, so the half-step's
-// motion (at most Δt v_max <= 0.02 h, since Eq. 24a keeps v_max <= c0/10 and Eq. 40b keeps
-// Δt <= 0.2 h/c0) stays inside the skin of 0.1 h.
+// Neighbour lists of the moving particles, built from the cell grid with a search radius of 2h
+// plus a skin s = 0.1 h, and read by every pass of the rate evaluations. A list entry is checked
+// against the kernel support at the current positions (the kernel is zero beyond 2h), so a list
+// stays valid while every particle is within s/2 of where it was when the lists were built: a
+// pair within 2h now was then within 2h + s. The engine keeps the cell sort and the lists over
+// several steps and rebuilds both when a particle could pass s/2 before the step's half-step
+// evaluation (ListDrift below, simulation.h).
 //
 // Storage: a fixed number of slots per moving particle (the lattice count in the search sphere
 // with room for compression); a list that overflows makes the builder retry with more slots.
@@ -24,26 +26,16 @@ namespace cascade {
 constexpr double kListRadius = 1.05;
 
 // Lists of the moving particles, which the cell sort puts first: list i belongs to particle i.
+// A pass loops over a list itself (a plain loop the host compiler vectorises, CASCADE_SIMD) and
+// lets the kernel, which is zero beyond 2h, drop the entries of the skin.
 template <typename Real, int Dim>
 struct NeighbourListView {
   const std::uint32_t* count;  // per list: number of entries
   const std::uint32_t* index;  // per list: `capacity` entries
   std::uint32_t capacity;
 
-  // Calls f(j, x_ij, r²) for every listed neighbour j of i now within the kernel support.
-  template <typename F>
-  CASCADE_HD void for_each(std::uint32_t i, const GridView<Real, Dim>& grid, Real support2,
-                           const Vec<Real, Dim>* position, F&& f) const {
-    const std::uint32_t* entries = index + std::size_t(i) * capacity;
-    const std::uint32_t n = count[i];
-    const Vec<Real, Dim> x_i = position[i];
-    for (std::uint32_t k = 0; k < n; ++k) {
-      const std::uint32_t j = entries[k];
-      const Vec<Real, Dim> d = grid.displacement(x_i, position[j]);
-      const Real r2 = d.squaredNorm();
-      if (r2 < support2) f(j, d, r2);
-    }
-  }
+  CASCADE_HD const std::uint32_t* entries(std::uint32_t i) const { return index + std::size_t(i) * capacity; }
+  CASCADE_HD std::uint32_t size(std::uint32_t i) const { return count[i]; }
 };
 
 template <typename Real, int Dim>
@@ -64,6 +56,27 @@ struct FillNeighbourList {
     });
     count[i] = n;
   }
+};
+
+// How far particle i may be from its position at the last list build by the end of the step's
+// half-step predictor: its drift so far plus ½ Δt_max |v_i|, the predictor's motion
+// (symplectic_verlet.h) for the largest step the coming step can take.
+template <typename Real, int Dim>
+struct ListDrift {
+  GridView<Real, Dim> grid;
+  const Vec<Real, Dim>* position;
+  const Vec<Real, Dim>* listed_position;
+  const Vec<Real, Dim>* velocity;
+  Real half_max_dt;
+
+  CASCADE_HD Real operator()(std::uint32_t i) const {
+    return grid.displacement(position[i], listed_position[i]).norm() + half_max_dt * velocity[i].norm();
+  }
+};
+
+template <typename Real>
+struct MaximumOf {
+  CASCADE_HD Real operator()(Real a, Real b) const { return a > b ? a : b; }
 };
 
 template <typename Real, int Dim, typename Backend>

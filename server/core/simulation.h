@@ -6,7 +6,9 @@
 #include <thrust/for_each.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/reduce.h>
+#include <thrust/transform_reduce.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -60,7 +62,8 @@ class Simulation final : public Engine {
     id_ = id;
     for (auto* v : {&pressure_, &density_rate_, &water_density_rate_, &step_limit_, &start_density_, &start_water_density_})
       v->resize(n);
-    for (auto* v : {&acceleration_, &water_density_gradient_, &start_position_, &start_velocity_}) v->resize(n);
+    for (auto* v : {&acceleration_, &water_density_gradient_, &start_position_, &start_velocity_, &listed_position_})
+      v->resize(n);
     scratch_vec_.resize(n);
     ghost_wet_.resize(n);
     scratch_real_.resize(n);
@@ -81,7 +84,7 @@ class Simulation final : public Engine {
   }
 
   void step() override {
-    sort_by_cell();
+    if (!lists_hold()) sort_by_cell();
     evaluate_rates(false);
     dt_ = next_time_step();
     save_step_start();
@@ -103,7 +106,7 @@ class Simulation final : public Engine {
     std::size_t bytes = 0;
     auto add = [&](const auto& v) { bytes += v.capacity() * sizeof(typename std::decay_t<decltype(v)>::value_type); };
     add(position_), add(velocity_), add(ghost_), add(acceleration_), add(water_density_gradient_);
-    add(start_position_), add(start_velocity_), add(scratch_vec_);
+    add(start_position_), add(start_velocity_), add(listed_position_), add(scratch_vec_);
     add(density_), add(water_density_), add(pressure_), add(density_rate_), add(water_density_rate_);
     add(step_limit_), add(start_density_), add(start_water_density_), add(scratch_real_);
     add(phase_), add(scratch_phase_), add(ghost_wet_), add(id_), add(scratch_index_);
@@ -172,7 +175,7 @@ class Simulation final : public Engine {
   }
 
   // Sort particles by cell so that the neighbours of a cell row are contiguous (DESIGN.md), then
-  // list each moving particle's neighbours for the step's two rate evaluations.
+  // list each moving particle's neighbours for the rate evaluations of this and later steps.
   void sort_by_cell() {
     cells_.sort(position_, phase_);
     cells_.reorder(position_, scratch_vec_);
@@ -186,6 +189,22 @@ class Simulation final : public Engine {
     active_ = cells_.active();
     moving_ = cells_.moving();
     neighbours_.build(grid_, position_, moving_);
+    thrust::copy(Backend::policy(), position_.begin(), position_.end(), listed_position_.begin());
+  }
+
+  // Whether the cell sort and the neighbour lists of the last build still hold for the coming
+  // step: no particle can be farther than half the skin from where it was listed by the half
+  // step (neighbour_list.h). Δt <= C0 h / c_w0 (Eq. 40b with μ = 0, 40d), or max_dt without water.
+  bool lists_hold() {
+    if (!(config_.sound_speed > 0)) return false;
+    const double max_dt = std::max(config_.cfl * config_.h / config_.sound_speed, config_.max_dt);
+    const Real half_skin = Real((kListRadius - 1.0) * config_.h);
+    const Real drift = thrust::transform_reduce(
+        Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
+        thrust::counting_iterator<std::uint32_t>(std::uint32_t(moving_)),
+        ListDrift<Real, Dim>{grid_, raw(position_), raw(listed_position_), raw(velocity_), Real(0.5 * max_dt)},
+        Real(0), MaximumOf<Real>());
+    return drift < half_skin;  // false for NaN
   }
 
   // Right-hand sides at the current state: boundary values first (Eqs. 30-35), then pressure and
@@ -231,7 +250,7 @@ class Simulation final : public Engine {
   std::size_t moving_ = 0;
 
   Vector<V> position_, velocity_, ghost_, acceleration_, water_density_gradient_, start_position_, start_velocity_,
-      scratch_vec_;
+      listed_position_, scratch_vec_;
   Vector<Real> density_, water_density_, pressure_, density_rate_, water_density_rate_, step_limit_, start_density_,
       start_water_density_, scratch_real_;
   Vector<Phase> phase_, scratch_phase_;

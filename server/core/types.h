@@ -3,11 +3,23 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <cstring>
 
 #if defined(__CUDACC__)
 #define CASCADE_HD __host__ __device__
 #else
 #define CASCADE_HD
+#endif
+
+// A neighbour loop that the host compiler may vectorise (OpenMP SIMD), with the reductions of
+// its sums named: CASCADE_SIMD(reduction(+ : a, b) reduction(max : c)). The order of the sums
+// is fixed by the build, so runs stay deterministic. Nothing on the device, where each particle
+// is a thread already.
+#define CASCADE_PRAGMA(x) _Pragma(#x)
+#if defined(_OPENMP) && !defined(__CUDA_ARCH__)
+#define CASCADE_SIMD(...) CASCADE_PRAGMA(omp simd __VA_ARGS__)
+#else
+#define CASCADE_SIMD(...)
 #endif
 
 namespace cascade {
@@ -17,6 +29,38 @@ template <typename Real, int Dim>
 using Vec = Eigen::Matrix<Real, Dim, 1>;
 template <typename Real, int Dim>
 using Mat = Eigen::Matrix<Real, Dim, Dim>;
+
+// Element j of an array of vectors, read through a 32-bit element index so that the host
+// compiler turns the reads of a vectorised neighbour loop into gathers (base + 4·index).
+template <typename Real, int Dim>
+CASCADE_HD inline Vec<Real, Dim> gather(const Vec<Real, Dim>* array, std::uint32_t j) {
+  const Real* base = array->data();
+  Vec<Real, Dim> v;
+  for (int a = 0; a < Dim; ++a) v[a] = base[std::uint32_t(Dim) * j + std::uint32_t(a)];
+  return v;
+}
+
+// The bits of a non-negative float or double as an unsigned integer: for x, y >= 0 the integers
+// order as the numbers do (IEEE 754), and a NaN compares above infinity. A neighbour loop takes
+// the maximum of a non-negative quantity over these, since GCC vectorises an integer maximum
+// but not a floating-point one that honours NaN.
+CASCADE_HD inline std::uint32_t ordered_bits(float x) {
+  std::uint32_t u;
+  std::memcpy(&u, &x, sizeof u);
+  return u;
+}
+CASCADE_HD inline std::uint64_t ordered_bits(double x) {
+  std::uint64_t u;
+  std::memcpy(&u, &x, sizeof u);
+  return u;
+}
+template <typename Real, typename Bits>
+CASCADE_HD inline Real from_ordered_bits(Bits u) {
+  static_assert(sizeof(Real) == sizeof(Bits), "bits and number differ in size");
+  Real x;
+  std::memcpy(&x, &u, sizeof x);
+  return x;
+}
 
 // Per-particle phase tag, as written to fields.h5 (docs/output.md).
 enum class Phase : std::uint8_t { water = 0, soil = 1, boundary = 2 };

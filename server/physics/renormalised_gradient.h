@@ -34,15 +34,29 @@ struct RenormalisedDensityGradient {
     if (p.phase[i] != Phase::water) return;
     const Real rho_w_i = p.water_density[i];
     p.pressure[i] = water.pressure(rho_w_i);
-    Mat<Real, Dim> moment = Mat<Real, Dim>::Zero();
-    Vec<Real, Dim> sum = Vec<Real, Dim>::Zero();
-    neighbours.for_each(i, grid, sph.kernel.support2, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) {
-      if (j == i || p.phase[j] == Phase::soil) return;
-      const Real volume = sph.mass / p.density[j];
-      const Vec<Real, Dim> grad_w = sph.kernel.gradient_factor(std::sqrt(r2)) * x_ij;
-      moment -= volume * grad_w * x_ij.transpose();
-      sum += volume * (p.water_density[j] - rho_w_i) * grad_w;
-    });
+    const Vec<Real, Dim> x_i = p.position[i];
+    Real moment_sum[Dim * Dim] = {};  // column-major, as Eigen's Mat
+    Real gradient_sum[Dim] = {};
+    const std::uint32_t* list = neighbours.entries(i);
+    const std::uint32_t count = neighbours.size(i);
+    const std::uint32_t soil_begin = grid.water_end, soil_end = grid.moving_end;
+    CASCADE_SIMD(reduction(+ : moment_sum[:Dim * Dim], gradient_sum[:Dim]))
+    for (std::uint32_t k = 0; k < count; ++k) {
+      const std::uint32_t j = list[k];
+      const Vec<Real, Dim> x_ij = grid.displacement(x_i, gather(p.position, j));
+      // Soil neighbours take no part (their ρ_w is pore water); zero beyond the support 2h.
+      const Real not_soil = (j >= soil_begin) & (j < soil_end) ? Real(0) : Real(1);
+      const Real volume = not_soil * sph.mass / p.density[j];
+      const Vec<Real, Dim> grad_w = sph.kernel.gradient_factor(std::sqrt(x_ij.squaredNorm())) * x_ij;
+      const Real difference = volume * (p.water_density[j] - rho_w_i);
+      for (int a = 0; a < Dim; ++a) {
+        gradient_sum[a] += difference * grad_w[a];
+        for (int b = 0; b < Dim; ++b) moment_sum[b * Dim + a] += volume * grad_w[a] * x_ij[b];  // V ∇W ⊗ x_ij
+      }
+    }
+    // Σ V_j ∇_i W_ij ⊗ x_ji = −Σ V_j ∇_i W_ij ⊗ x_ij
+    const Mat<Real, Dim> moment = -Eigen::Map<const Mat<Real, Dim>>(moment_sum);
+    const Vec<Real, Dim> sum = Eigen::Map<const Vec<Real, Dim>>(gradient_sum);
     const Real det = determinant(moment);
     p.water_density_gradient[i] = std::fabs(det) > kMinDeterminant ? Vec<Real, Dim>(inverse(moment, det) * sum) : sum;
   }

@@ -26,6 +26,7 @@ struct WaterInteraction {
 
   CASCADE_HD void operator()(std::uint32_t i) const {
     if (p.phase[i] != Phase::water) return;
+    const Vec<Real, Dim> x_i = p.position[i];
     const Vec<Real, Dim> v_i = p.velocity[i];
     const Real rho_i = p.density[i];
     const Real rho_w_i = p.water_density[i];
@@ -35,27 +36,43 @@ struct WaterInteraction {
 
     Real divergence = 0;  // Σ V_j (v_i − v_j)·∇_i W_ij
     Real diffusion = 0;   // Σ V_j ψ_ij·∇_i W_ij over water neighbours
-    Vec<Real, Dim> pressure_force = Vec<Real, Dim>::Zero();
-    Vec<Real, Dim> viscous = Vec<Real, Dim>::Zero();
-    Real max_mu = 0;
+    Real pressure_sum[Dim] = {};
+    Real viscous_sum[Dim] = {};
+    auto max_mu_bits = ordered_bits(Real(0));  // max_j |μ_ij| within the support
 
-    neighbours.for_each(i, grid, sph.kernel.support2, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_ij, Real r2) {
-      if (j == i) return;
+    const std::uint32_t* list = neighbours.entries(i);
+    const std::uint32_t count = neighbours.size(i);
+    CASCADE_SIMD(reduction(+ : divergence, diffusion, pressure_sum[:Dim], viscous_sum[:Dim]) reduction(max : max_mu_bits))
+    for (std::uint32_t k = 0; k < count; ++k) {
+      const std::uint32_t j = list[k];
+      const Vec<Real, Dim> x_ij = grid.displacement(x_i, gather(p.position, j));
+      const Real r2 = x_ij.squaredNorm();
       const Real rho_j = p.density[j];
       const Real volume_j = sph.mass / rho_j;
+      // Zero beyond the support 2h, so the list's skin entries add nothing below.
       const Vec<Real, Dim> grad_w = sph.kernel.gradient_factor(std::sqrt(r2)) * x_ij;
-      const Vec<Real, Dim> v_ij = v_i - p.velocity[j];
+      const Vec<Real, Dim> v_ij = v_i - gather(p.velocity, j);
       divergence += velocity_divergence_pair(volume_j, v_ij, grad_w);
-      pressure_force += pressure_force_pair(volume_j, p_i, p.pressure[j], grad_w);
+      const Vec<Real, Dim> pressure = pressure_force_pair(volume_j, p_i, p.pressure[j], grad_w);
       const Real inv_r2_eta2 = Real(1) / (r2 + sph.eta2);
       const Real mu = viscosity_mu(sph.h, v_ij, x_ij, inv_r2_eta2);
-      max_mu = std::fmax(max_mu, std::fabs(mu));
-      viscous += artificial_viscosity_pair(alpha_c0, sph.mass, rho_i, rho_j, mu, grad_w);
+      // |μ_ij| within the support, 0 for the list's skin entries (a mask, not a branch).
+      auto mu_bits = ordered_bits(std::fabs(mu));
+      mu_bits &= decltype(mu_bits)(0) - decltype(mu_bits)(r2 < sph.kernel.support2);
+      max_mu_bits = max_mu_bits > mu_bits ? max_mu_bits : mu_bits;
+      const Vec<Real, Dim> viscous = artificial_viscosity_pair(alpha_c0, sph.mass, rho_i, rho_j, mu, grad_w);
+      for (int a = 0; a < Dim; ++a) {
+        pressure_sum[a] += pressure[a];
+        viscous_sum[a] += viscous[a];
+      }
       // Dummy particles take no part in the diffusion: it would move water mass into walls.
-      if (p.phase[j] == Phase::water)
-        diffusion += density_diffusion_pair(volume_j, rho_w_i, p.water_density[j], x_ij, inv_r2_eta2, grad_rho_i,
-                                            p.water_density_gradient[j], grad_w);
-    });
+      const Real water_j = j < grid.water_end ? Real(1) : Real(0);
+      diffusion += water_j * density_diffusion_pair(volume_j, rho_w_i, p.water_density[j], x_ij, inv_r2_eta2,
+                                                    grad_rho_i, gather(p.water_density_gradient, j), grad_w);
+    }
+    const Real max_mu = from_ordered_bits<Real>(max_mu_bits);
+    const Vec<Real, Dim> pressure_force = Eigen::Map<const Vec<Real, Dim>>(pressure_sum);
+    const Vec<Real, Dim> viscous = Eigen::Map<const Vec<Real, Dim>>(viscous_sum);
 
     p.density_rate[i] = rho_i * divergence;
     p.water_density_rate[i] = rho_w_i * divergence + water.delta * sph.h * water.c0 * diffusion;

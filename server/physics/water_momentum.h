@@ -27,8 +27,8 @@ CASCADE_HD inline Real viscosity_mu(Real h, const Vec<Real, Dim>& v_ij, const Ve
 template <typename Real, int Dim>
 CASCADE_HD inline Vec<Real, Dim> artificial_viscosity_pair(Real alpha_c0, Real mass_j, Real rho_i, Real rho_j, Real mu,
                                                           const Vec<Real, Dim>& grad_w) {
-  if (mu >= Real(0)) return Vec<Real, Dim>::Zero();
-  return (Real(2) * alpha_c0 * mass_j / (rho_i + rho_j) * mu) * grad_w;
+  const Real approaching_mu = mu < Real(0) ? mu : Real(0);
+  return (Real(2) * alpha_c0 * mass_j / (rho_i + rho_j) * approaching_mu) * grad_w;
 }
 
 }  // namespace cascade
