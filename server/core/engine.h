@@ -9,8 +9,12 @@
 #include <stdexcept>
 #include <string>
 
+#include <vector>
+
 #include "server/core/field_frame.h"
 #include "server/core/host_particles.h"
+#include "server/core/hydraulic_forcing.h"
+#include "server/core/soil_material.h"
 
 namespace cascade {
 
@@ -29,6 +33,8 @@ struct EngineConfig {
   double sound_speed = 0;               // c_w0 (Eq. 24a)
   double delta = 0.1;                   // δ (Eq. 23a)
   double viscosity_alpha = 0.01;        // α_μ,w (Eq. 23b)
+  std::vector<SoilMaterial> soils;      // HostParticles::soil_material indexes these
+  HydraulicForcing forcing;             // the free-surface conditions at the start (Eq. 39)
   double cfl = 0.2;                     // C0 (Eq. 40d)
   double max_dt = 0;                    // 0: none
   double min_dt = 1e-12;                // a smaller step fails the run
@@ -54,6 +60,9 @@ class Engine {
   virtual std::size_t device_bytes() const = 0;    // memory held in particle and grid arrays
   virtual FieldFrame frame() const = 0;            // all fields on the host, ordered by id
   virtual const char* device_name() const = 0;
+  // The free-surface hydraulic conditions (Eq. 39); a change applies from the next step on.
+  virtual void set_forcing(const HydraulicForcing& forcing) = 0;
+  virtual HydraulicForcing forcing() const = 0;
 };
 
 std::unique_ptr<Engine> make_engine(const EngineConfig& config, const HostParticles& particles);

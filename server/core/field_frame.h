@@ -23,6 +23,8 @@ struct FieldFrame {
   std::vector<double> position;  // N × 3, z up; 2D cases have y = 0
   std::vector<std::uint8_t> phase;  // N: 0 water, 1 soil, 2 boundary
   std::vector<std::uint32_t> id;    // N
+  std::vector<std::uint8_t> free_surface;  // N: 1 for a soil particle on the free surface (Eq. 38);
+                                           // empty when the case has no soil
   std::vector<RealField> fields;    // velocity (N×3), pressure, density, ...
 
   std::size_t size() const { return id.size(); }

@@ -21,6 +21,7 @@ struct GridView {
   // of h hold 1.7 times fewer candidates than 3^Dim cells of 2h around a 2h sphere in 3D.
   static constexpr int kReach = 2;
   static constexpr std::uint32_t kBlocks = 3;  // water, soil, dummy
+  static constexpr int kWaterBlock = 0, kSoilBlock = 1, kDummyBlock = 2;
 
   Vec<Real, Dim> origin;   // domain minimum
   Vec<Real, Dim> length;   // domain extent
@@ -101,12 +102,13 @@ struct GridView {
     visit_cells(x, c, position, f);
   }
 
-  // As for_each_neighbour, over the moving (non-dummy) particles only.
-  template <typename F>
-  CASCADE_HD void for_each_moving_neighbour(const Vec<Real, Dim>& x, const Vec<Real, Dim>* position, F&& f) const {
+  // As for_each_neighbour, over the particles of blocks [FirstBlock, EndBlock) only: 0 water,
+  // 1 soil, 2 dummy (the ghost nodes of a dummy particle gather from one phase).
+  template <int FirstBlock, int EndBlock, typename F>
+  CASCADE_HD void for_each_neighbour_in(const Vec<Real, Dim>& x, const Vec<Real, Dim>* position, F&& f) const {
     int c[Dim];
     for (int a = 0; a < Dim; ++a) c[a] = cell_coordinate(x[a], a);
-    visit_cells<true>(x, c, position, f);
+    visit_cells<FirstBlock, EndBlock>(x, c, position, f);
   }
 
   // As for_each_neighbour around particle i, searching from the cell it was sorted into. Every
@@ -126,20 +128,20 @@ struct GridView {
   }
 
  private:
-  template <bool MovingOnly = false, typename F>
+  template <int FirstBlock = 0, int EndBlock = int(kBlocks), typename F>
   CASCADE_HD void visit_cells(const Vec<Real, Dim>& x, const int* c, const Vec<Real, Dim>* position, F& f) const {
     if constexpr (Dim == 2) {
       for (int dz = -kReach; dz <= kReach; ++dz) {
         int cc[2] = {0, c[1] + dz};
         if (!wrap_cell(cc[1], 1)) continue;
-        visit_row<MovingOnly>(x, c[0], cc, position, f);
+        visit_row<FirstBlock, EndBlock>(x, c[0], cc, position, f);
       }
     } else {
       for (int dz = -kReach; dz <= kReach; ++dz) {
         for (int dy = -kReach; dy <= kReach; ++dy) {
           int cc[3] = {0, c[1] + dy, c[2] + dz};
           if (!wrap_cell(cc[1], 1) || !wrap_cell(cc[2], 2)) continue;
-          visit_row<MovingOnly>(x, c[0], cc, position, f);
+          visit_row<FirstBlock, EndBlock>(x, c[0], cc, position, f);
         }
       }
     }
@@ -154,11 +156,10 @@ struct GridView {
 
   // The cells cx-kReach..cx+kReach of one row along x: one contiguous range in each block (water,
   // soil, dummy) unless the row wraps around a periodic axis.
-  template <bool MovingOnly, typename F>
+  template <int FirstBlock, int EndBlock, typename F>
   CASCADE_HD void visit_row(const Vec<Real, Dim>& x, int cx, int* cc, const Vec<Real, Dim>* position, F& f) const {
     const int n0 = ncell[0];
     const std::uint32_t cells = cell_count();
-    constexpr int blocks = MovingOnly ? 2 : 3;
     int lo = cx - kReach, hi = cx + kReach;
     if (!periodic[0] || (lo >= 0 && hi < n0)) {
       if (lo < 0) lo = 0;
@@ -167,7 +168,7 @@ struct GridView {
       const std::uint32_t first = key(cc);
       cc[0] = hi;
       const std::uint32_t last = key(cc);
-      for (int b = 0; b < blocks; ++b)
+      for (int b = FirstBlock; b < EndBlock; ++b)
         visit_range(x, cell_start[b * cells + first], cell_start[b * cells + last + 1], position, f);
       return;
     }
@@ -175,7 +176,7 @@ struct GridView {
       cc[0] = cxn;
       if (!wrap_cell(cc[0], 0)) continue;
       const std::uint32_t k = key(cc);
-      for (int b = 0; b < blocks; ++b) visit_range(x, cell_start[b * cells + k], cell_start[b * cells + k + 1], position, f);
+      for (int b = FirstBlock; b < EndBlock; ++b) visit_range(x, cell_start[b * cells + k], cell_start[b * cells + k + 1], position, f);
     }
   }
 

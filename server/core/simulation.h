@@ -3,6 +3,7 @@
 #pragma once
 
 #include <thrust/copy.h>
+#include <thrust/fill.h>
 #include <thrust/for_each.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/reduce.h>
@@ -20,7 +21,13 @@
 #include "server/core/cell_sort.h"
 #include "server/core/neighbour_list.h"
 #include "server/core/particle_view.h"
+#include "server/physics/free_surface.h"
+#include "server/physics/pore_water_continuity.h"
+#include "server/physics/pore_water_state.h"
 #include "server/physics/renormalised_gradient.h"
+#include "server/physics/seepage.h"
+#include "server/physics/soil_view.h"
+#include "server/physics/solid_boundary_soil.h"
 #include "server/physics/solid_boundary.h"
 #include "server/physics/symplectic_verlet.h"
 #include "server/physics/time_step.h"
@@ -37,6 +44,7 @@ class Simulation final : public Engine {
  public:
   Simulation(const EngineConfig& config, const HostParticles& host)
       : config_(config),
+        forcing_(config.forcing),
         cells_(config.domain_min, config.domain_max, config.periodic, 2.0 * kListRadius * config.h),
         neighbours_(config.h / config.dp) {
     const std::size_t n = host.size();
@@ -69,6 +77,7 @@ class Simulation final : public Engine {
     scratch_real_.resize(n);
     scratch_phase_.resize(n);
     scratch_index_.resize(n);
+    set_up_soil(host);
 
     sph_.h = Real(config.h);
     sph_.kernel = WendlandC2<Real, Dim>(Real(config.h));
@@ -77,10 +86,11 @@ class Simulation final : public Engine {
     for (int a = 0; a < Dim; ++a) sph_.gravity[a] = Real(config.gravity[a]);
     water_ = WaterConstants<Real>{Real(config.water_density), Real(config.sound_speed), Real(config.delta),
                                   Real(config.viscosity_alpha)};
-    // Pressures of the initial state (Eq. 6 and the boundary extrapolation), so that frame 0 has them.
+    // Pressures of the initial state (Eq. 6, the pore-water state and the boundary
+    // extrapolation), so that frame 0 has them.
     sort_by_cell();
-    launch(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_, raw(ghost_wet_), false}, moving_, active_);
-    launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, moving_);
+    boundary_values(false);
+    density_gradients();
   }
 
   void step() override {
@@ -101,6 +111,8 @@ class Simulation final : public Engine {
   std::size_t particle_count() const override { return phase_.size(); }
   std::size_t lost_particles() const override { return phase_.size() - active_; }
   const char* device_name() const override { return Backend::name; }
+  void set_forcing(const HydraulicForcing& forcing) override { forcing_ = forcing; }
+  HydraulicForcing forcing() const override { return forcing_; }
 
   std::size_t device_bytes() const override {
     std::size_t bytes = 0;
@@ -110,6 +122,8 @@ class Simulation final : public Engine {
     add(density_), add(water_density_), add(pressure_), add(density_rate_), add(water_density_rate_);
     add(step_limit_), add(start_density_), add(start_water_density_), add(scratch_real_);
     add(phase_), add(scratch_phase_), add(ghost_wet_), add(id_), add(scratch_index_);
+    add(soil_materials_), add(soil_material_), add(free_surface_), add(surface_state_), add(scratch_byte_);
+    add(porosity_), add(saturation_), add(pore_pressure_), add(seepage_), add(pressure_gradient_);
     return bytes + cells_.bytes() + neighbours_.bytes();
   }
 
@@ -153,10 +167,53 @@ class Simulation final : public Engine {
       num.values[i] = double(density[k]);
     }
     f.fields = {std::move(vel), std::move(pres), std::move(dens), std::move(num)};
+    if (has_soil_) add_soil_fields(f, id, pressure, axis3);
     return f;
   }
 
  private:
+  // The soil fields of docs/output.md, ordered by id like the others. The skeleton is rigid
+  // (set_up_soil), so the effective stress is the initial one and κ and the displacement are 0.
+  void add_soil_fields(FieldFrame& f, const std::vector<std::uint32_t>& id, const std::vector<Real>& pressure,
+                       const int* axis3) const {
+    const std::size_t n = id.size();
+    std::vector<Real> porosity(n), saturation(n);
+    std::vector<V> seepage(n), position(n);
+    std::vector<std::uint8_t> free_surface(n);
+    thrust::copy(porosity_.begin(), porosity_.end(), porosity.begin());
+    thrust::copy(saturation_.begin(), saturation_.end(), saturation.begin());
+    thrust::copy(seepage_.begin(), seepage_.end(), seepage.begin());
+    thrust::copy(position_.begin(), position_.end(), position.begin());
+    thrust::copy(free_surface_.begin(), free_surface_.end(), free_surface.begin());
+    FieldFrame::RealField pore{"pore_pressure", "Pa", 1, std::vector<double>(n)};
+    FieldFrame::RealField sat{"saturation", "-", 1, std::vector<double>(n)};
+    FieldFrame::RealField phi{"porosity", "-", 1, std::vector<double>(n)};
+    FieldFrame::RealField kappa{"plastic_strain", "-", 1, std::vector<double>(n)};
+    FieldFrame::RealField q{"seepage", "m/s", 3, std::vector<double>(3 * n)};
+    FieldFrame::RealField u{"displacement", "m", 3, std::vector<double>(3 * n)};
+    FieldFrame::RealField total{"stress", "Pa", 6, std::vector<double>(6 * n)};
+    FieldFrame::RealField effective{"effective_stress", "Pa", 6, std::vector<double>(6 * n)};
+    f.free_surface.assign(n, 0);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = id[k];
+      if (f.phase[i] != std::uint8_t(Phase::soil)) continue;
+      pore.values[i] = double(pressure[k]);
+      sat.values[i] = double(saturation[k]);
+      phi.values[i] = double(porosity[k]);
+      f.free_surface[i] = free_surface[k];
+      for (int c = 0; c < 3; ++c) {
+        q.values[3 * i + c] = axis3[c] < 0 ? 0.0 : double(seepage[k][axis3[c]]);
+        u.values[3 * i + c] = f.position[3 * i + c] - initial_position_[3 * i + c];
+      }
+      // σ = σ' − S_w p_w I (Bishop, Eq. 7)
+      for (int c = 0; c < 6; ++c) {
+        effective.values[6 * i + c] = initial_stress_[6 * i + c];
+        total.values[6 * i + c] = initial_stress_[6 * i + c] - (c < 3 ? sat.values[i] * pore.values[i] : 0.0);
+      }
+    }
+    for (auto* field : {&pore, &sat, &phi, &kappa, &q, &u, &total, &effective}) f.fields.push_back(std::move(*field));
+  }
+
   // Runs f on particles [begin, end): the moving particles are [0, moving_), the dummy particles
   // [moving_, active_) (cell_sort.h), so each pass runs on its own particles, evenly split.
   template <typename F>
@@ -185,6 +242,14 @@ class Simulation final : public Engine {
     cells_.reorder(water_density_, scratch_real_);
     cells_.reorder(phase_, scratch_phase_);
     cells_.reorder(id_, scratch_index_);
+    if (has_soil_) {
+      // Carried from step to step: the material, the porosity, the surface state and the last
+      // seepage discharge that decides it (pore_water_state.h). The rest is recomputed.
+      cells_.reorder(soil_material_, scratch_byte_);
+      cells_.reorder(surface_state_, scratch_byte_);
+      cells_.reorder(porosity_, scratch_real_);
+      cells_.reorder(seepage_, scratch_vec_);
+    }
     grid_ = cells_.view();
     active_ = cells_.active();
     moving_ = cells_.moving();
@@ -194,10 +259,12 @@ class Simulation final : public Engine {
 
   // Whether the cell sort and the neighbour lists of the last build still hold for the coming
   // step: no particle can be farther than half the skin from where it was listed by the half
-  // step (neighbour_list.h). Δt <= C0 h / c_w0 (Eq. 40b with μ = 0, 40d), or max_dt without water.
+  // step (neighbour_list.h). Δt <= C0 h / c_w0 (Eq. 40b with μ = 0, 40d), or max_dt.
   bool lists_hold() {
-    if (!(config_.sound_speed > 0)) return false;
-    const double max_dt = std::max(config_.cfl * config_.h / config_.sound_speed, config_.max_dt);
+    // Without water nothing bounds the step by a sound speed; only a rigid skeleton is there
+    // then (set_up_soil), whose particles do not move: v = 0, and the bound does not matter.
+    const double max_dt =
+        config_.sound_speed > 0 ? std::max(config_.cfl * config_.h / config_.sound_speed, config_.max_dt) : 0.0;
     const Real half_skin = Real((kListRadius - 1.0) * config_.h);
     const Real drift = thrust::transform_reduce(
         Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
@@ -207,12 +274,91 @@ class Simulation final : public Engine {
     return drift < half_skin;  // false for NaN
   }
 
-  // Right-hand sides at the current state: boundary values first (Eqs. 30-35), then pressure and
-  // renormalised density gradients (Eqs. 6, 25), then the water interaction (Eqs. 22-24, 40).
+  // Right-hand sides at the current state: boundary values and states first (Eqs. 30-35, 38,
+  // 39), then pressures and renormalised density gradients (Eqs. 6, 25), the seepage discharge
+  // (Eq. 27b) and its wall values (Eq. 35b), then the interactions (Eqs. 22-24, 27a, 40).
   void evaluate_rates(bool half_step) {
+    boundary_values(half_step);
+    density_gradients();
+    const std::uint32_t water = grid_.water_end;
+    if (has_soil_) {
+      launch(SeepageDischarge<Real, Dim>{view(), soil_view(), sph_, surface_forcing()}, water, moving_);
+      launch(SolidBoundarySeepage<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
+    }
+    launch(WaterInteraction<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, water);
+    if (has_soil_)
+      launch(PoreWaterContinuity<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_, water_.rho0}, water,
+             moving_);
+  }
+
+  // The dummy particles' water values (Eqs. 30-35a); with soil, the free surface (Eq. 38, at the
+  // step's first evaluation), the pore-water state and surface conditions (Eqs. 6, 39) and the
+  // dummies' pore-water pressure (Eq. 32b).
+  void boundary_values(bool half_step) {
     launch(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_, raw(ghost_wet_), half_step}, moving_, active_);
-    launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, moving_);
-    launch(WaterInteraction<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, moving_);
+    if (!has_soil_) return;
+    const std::uint32_t water = grid_.water_end;
+    if (!half_step) launch(FreeSurfaceDetection<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_}, water, moving_);
+    launch(PoreWaterState<Real, Dim>{view(), soil_view(), surface_forcing(), water_.rho0, !half_step}, water, moving_);
+    launch(SolidBoundaryPoreWater<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
+  }
+
+  // Water pressure (Eq. 6) and the renormalised gradients of the water and pore-water densities
+  // (Eq. 25), each over its own particles.
+  void density_gradients() {
+    const std::uint32_t water = grid_.water_end;
+    launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, water);
+    if (has_soil_)
+      launch(RenormalisedDensityGradient<Real, Dim, true>{view(), grid_, neighbours_.view(), sph_, water_, soil_view(),
+                                                          water_.rho0},
+             water, moving_);
+  }
+
+  SoilView<Real, Dim> soil_view() {
+    return {raw(soil_materials_), raw(soil_material_), raw(porosity_), raw(saturation_), raw(seepage_),
+            raw(pore_pressure_), raw(pressure_gradient_), raw(free_surface_), raw(surface_state_)};
+  }
+  SurfaceForcing<Real, Dim> surface_forcing() const { return SurfaceForcing<Real, Dim>::from(forcing_); }
+
+  // The soil arrays, only for a case with soil particles. A deforming skeleton (soil momentum,
+  // stress update, Eqs. 7, 8, 26) is not in the engine yet: such a material is refused here.
+  void set_up_soil(const HostParticles& host) {
+    has_soil_ = host.count(Phase::soil) > 0;
+    if (!has_soil_) return;
+    for (std::size_t m = 0; m < config_.soils.size(); ++m)
+      if (!config_.soils[m].rigid)
+        throw std::invalid_argument("soil material " + std::to_string(m) +
+                                    ": a deforming soil skeleton is not in the engine yet (only rigid: true)");
+    const std::size_t n = host.size();
+    // Host copies by id: the initial positions (for the displacement) and effective stresses.
+    initial_position_.assign(3 * n, 0.0);
+    initial_stress_.assign(6 * n, 0.0);
+    const int axis3[3] = {0, Dim == 2 ? -1 : 1, Dim == 2 ? 1 : 2};
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int c = 0; c < 3; ++c) initial_position_[3 * i + c] = axis3[c] < 0 ? 0.0 : host.position[i * Dim + axis3[c]];
+      if (host.effective_stress.size() == 6 * n)
+        for (int c = 0; c < 6; ++c) initial_stress_[6 * i + c] = host.effective_stress[6 * i + c];
+    }
+    std::vector<std::uint8_t> material(n, 0);
+    std::vector<Real> porosity(n, Real(0));
+    for (std::size_t i = 0; i < n; ++i) {
+      if (host.phase[i] != Phase::soil) continue;
+      if (i >= host.soil_material.size() || host.soil_material[i] >= config_.soils.size())
+        throw std::invalid_argument("soil particle " + std::to_string(i) + " has no soil material");
+      material[i] = host.soil_material[i];
+      porosity[i] = Real(host.porosity[i]);
+    }
+    soil_materials_ = config_.soils;
+    soil_material_ = material;
+    porosity_ = porosity;
+    saturation_.resize(n);
+    seepage_.resize(n);
+    pore_pressure_.resize(n);
+    pressure_gradient_.resize(n);
+    free_surface_.resize(n);
+    surface_state_.resize(n);
+    thrust::fill(surface_state_.begin(), surface_state_.end(), std::uint8_t(SurfaceState::flux));
+    thrust::fill(seepage_.begin(), seepage_.end(), V::Zero());
   }
 
   double next_time_step() {
@@ -222,7 +368,8 @@ class Simulation final : public Engine {
       throw SimulationFailure("the state holds NaN or infinity at t = " + std::to_string(time_) + " s, step " +
                               std::to_string(steps_) + " (a rate of change is not finite)");
     double dt = config_.cfl * double(limit);
-    if (limit == std::numeric_limits<Real>::max()) dt = config_.max_dt > 0 ? config_.max_dt : 0.0;  // no water
+    // No particle limits the step (no water, only dry soil): max_dt, or no step at all.
+    if (limit >= std::numeric_limits<Real>::max()) dt = config_.max_dt > 0 ? config_.max_dt : 0.0;
     else if (config_.max_dt > 0 && dt > config_.max_dt) dt = config_.max_dt;
     if (dt < config_.min_dt)
       throw SimulationFailure("time step " + std::to_string(dt) + " s fell below min_dt " +
@@ -238,6 +385,7 @@ class Simulation final : public Engine {
   }
 
   EngineConfig config_;
+  HydraulicForcing forcing_;
   SphConstants<Real, Dim> sph_{};
   WaterConstants<Real> water_{};
   CellSort<Real, Dim, Backend> cells_;
@@ -255,6 +403,12 @@ class Simulation final : public Engine {
       start_water_density_, scratch_real_;
   Vector<Phase> phase_, scratch_phase_;
   Vector<std::uint8_t> ghost_wet_;
+  bool has_soil_ = false;
+  Vector<SoilMaterial> soil_materials_;
+  Vector<std::uint8_t> soil_material_, free_surface_, surface_state_, scratch_byte_;
+  Vector<Real> porosity_, saturation_, pore_pressure_;
+  Vector<V> seepage_, pressure_gradient_;
+  std::vector<double> initial_position_, initial_stress_;  // host, by id: N × 3, N × 6
   Vector<std::uint32_t> id_, scratch_index_;
 };
 

@@ -86,8 +86,9 @@ struct SolidBoundaryWater {
     const Vec<Real, Dim> x_g = p.ghost[b];
     GhostInterpolation<Real, Dim, 1> ghost;
     bool any_water = false;
-    grid.for_each_moving_neighbour(x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_gj, Real r2) {
-      if (p.phase[j] != Phase::water) return;
+    using Grid = GridView<Real, Dim>;
+    grid.template for_each_neighbour_in<Grid::kWaterBlock, Grid::kWaterBlock + 1>(
+        x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_gj, Real r2) {
       any_water = true;
       const Real r = std::sqrt(r2);
       const Real volume = sph.mass / p.density[j];

@@ -58,7 +58,7 @@ void compare_with_brute_force(const std::array<bool, 3>& periodic, std::uint32_t
     });
     grid.for_each_neighbour_of(std::uint32_t(i), sorted.data(),
                                [&](std::uint32_t j, const Vec<Real, Dim>&, Real) { found_of.insert(j); });
-    grid.for_each_moving_neighbour(sorted[i], sorted.data(), [&](std::uint32_t j, const Vec<Real, Dim>&, Real) {
+    grid.template for_each_neighbour_in<0, 2>(sorted[i], sorted.data(), [&](std::uint32_t j, const Vec<Real, Dim>&, Real) {
       EXPECT_TRUE(found_moving.insert(j).second) << "neighbour visited twice";
     });
     std::set<std::uint32_t> expected, expected_moving;

@@ -1,0 +1,28 @@
+// The hydraulic conditions on the free surface of the soil (Eq. 39): rainfall (or evaporation)
+// flux, the ponding pressure p_max and the drying limit p_min. Run-time parameters of the solver:
+// the runner or the steering server sets them between steps (Engine::set_forcing), and a change
+// takes effect at the next step.
+#pragma once
+
+#include <array>
+#include <limits>
+
+namespace cascade {
+
+struct HydraulicForcing {
+  // Vertical flux into the soil at its free-surface particles (m/s): rainfall > 0, evaporation
+  // < 0. The prescribed seepage discharge of such a particle is q_w = (0, ..., −intensity).
+  double rainfall_intensity = 0;
+  // p_max (Pa): a free-surface particle whose pore pressure reaches it ponds, and holds
+  // p_w = p_max until the soil below takes more than the rain again.
+  double ponding_pressure = 0;
+  // p_min (Pa): a drying free-surface particle holds p_w = p_min once it reaches it.
+  double drying_pressure = -std::numeric_limits<double>::infinity();
+  // Rain falls on the free-surface particles inside this box only (the first `dimensions`
+  // components, (x, z) in 2D); elsewhere the surface takes no flux.
+  bool has_region = false;
+  std::array<double, 3> region_min{};
+  std::array<double, 3> region_max{};
+};
+
+}  // namespace cascade

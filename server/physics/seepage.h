@@ -1,0 +1,43 @@
+// Seepage discharge of the pore water (Eq. 27b):
+//   q_w,i = K_i/g ( −(1/ρ_w,i) ⟨∇p_w⟩_i + g − a_s,i ),
+// K_i = K_sat K_rel(p_c,i) (Eqs. 15, 42b, 43b), with the pressure gradient over the soil and
+// dummy neighbours of a soil particle, renormalised (renormalised_gradient.h). The drag between the
+// pore water and the skeleton is this K term (ERRATA.md); free water particles do not take part
+// (no mass exchange between free water and pore water). a_s is the soil acceleration of the last
+// evaluation, zero for a rigid skeleton. A free-surface particle under the flux condition of
+// Eq. 39 takes the prescribed discharge (0, ..., −i) instead (pore_water_state.h).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "server/core/particle_view.h"
+#include "server/physics/pore_water_state.h"
+#include "server/physics/soil_view.h"
+
+namespace cascade {
+
+template <typename Real, int Dim>
+struct SeepageDischarge {
+  ParticleView<Real, Dim> p;
+  SoilView<Real, Dim> soil;
+  SphConstants<Real, Dim> sph;
+  SurfaceForcing<Real, Dim> forcing;
+
+  CASCADE_HD void operator()(std::uint32_t i) const {
+    if (soil.free_surface[i] && soil.surface_state[i] == std::uint8_t(SurfaceState::flux)) {
+      Vec<Real, Dim> q = Vec<Real, Dim>::Zero();
+      q[Dim - 1] = -forcing.intensity_at(p.position[i]);
+      soil.seepage[i] = q;
+      return;
+    }
+    const SoilMaterial& m = soil.materials[soil.material[i]];
+    const double p_c = -double(p.pressure[i]);
+    const Real g = sph.gravity.norm();
+    const Real conductivity = Real(m.saturated_conductivity * m.hydraulic.relative_conductivity(p_c));
+    const Vec<Real, Dim> soil_acceleration = m.rigid ? Vec<Real, Dim>::Zero() : p.acceleration[i];
+    soil.seepage[i] = conductivity / g * (-soil.pressure_gradient[i] / p.water_density[i] + sph.gravity - soil_acceleration);
+  }
+};
+
+}  // namespace cascade

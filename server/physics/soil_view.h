@@ -1,0 +1,45 @@
+// Raw pointers into the soil and pore-water arrays, handed to the soil kernels by value at each
+// launch (the soil counterpart of ParticleView). For a soil particle the ParticleView fields
+// water_density and pressure hold its pore water's ρ_w and p_w; for a dummy particle they belong
+// to the free water, and its pore-water pressure, seen by soil neighbours only, is here.
+#pragma once
+
+#include <cstdint>
+
+#include "server/core/soil_material.h"
+#include "server/core/types.h"
+
+namespace cascade {
+
+// How a free-surface soil particle takes the hydraulic condition of Eq. 39.
+enum class SurfaceState : std::uint8_t {
+  flux = 0,     // the prescribed rainfall or evaporation flux
+  ponded = 1,   // p_w held at the ponding pressure p_max
+  drying = 2,   // p_w held at the drying limit p_min
+};
+
+template <typename Real, int Dim>
+struct SoilView {
+  const SoilMaterial* materials;       // EngineConfig::soils on the device
+  const std::uint8_t* material;        // per particle: index into materials
+  Real* porosity;                      // φ (Eq. 26a)
+  Real* saturation;                    // S_w(p_c) (Eqs. 14, 42, 43)
+  Vec<Real, Dim>* seepage;             // q_w (Eq. 27b); for a dummy, −q_g (Eq. 35b)
+  Real* pore_pressure;                 // per dummy particle: p_w of the pore water (Eq. 32b)
+  Vec<Real, Dim>* pressure_gradient;   // per soil particle: renormalised ⟨∇p_w⟩^L (Eq. 25)
+  std::uint8_t* free_surface;          // per soil particle: 1 where ∇·x is below the threshold (Eq. 38)
+  std::uint8_t* surface_state;         // per soil particle: a SurfaceState
+};
+
+// The pore-water state of Eq. 6 with the soil's bulk modulus: p_w = K_w/ρ_w0 (ρ_w − ρ_w0), and
+// its inverse (Eq. 36b).
+template <typename Real>
+CASCADE_HD inline Real pore_pressure(const SoilMaterial& m, Real rho0, Real pore_density) {
+  return Real(m.water_bulk_modulus) / rho0 * (pore_density - rho0);
+}
+template <typename Real>
+CASCADE_HD inline Real pore_density_of(const SoilMaterial& m, Real rho0, Real pressure) {
+  return rho0 * (Real(1) + pressure / Real(m.water_bulk_modulus));
+}
+
+}  // namespace cascade

@@ -1,0 +1,68 @@
+// Soil side of the solid boundary (Section 3.3.1): the pore-water values that a dummy particle
+// shows its soil neighbours, from the soil around its ghost node. Water neighbours see the
+// water side (solid_boundary.h); a wall touched by both keeps both.
+//  - p_w: first-order interpolation at the ghost node and Taylor extrapolation to the dummy
+//    (Eqs. 30-32b), or the Shepard value (Eq. 33b) when |det A_g| < 10⁻³. The paper extrapolates
+//    ρ_w; the pressure is the same within one soil (linear Eq. 6) and stays continuous between
+//    soils of different K_w, whose densities jump. A soil neighbour reads ρ_w from it with its
+//    own K_w (renormalised_gradient.h).
+//  - q_w: Shepard interpolation at the ghost node (Eq. 34b), reversed at the dummy (Eq. 35b), so
+//    that the seepage through the wall vanishes: an impermeable wall.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "server/core/neighbour_grid.h"
+#include "server/core/particle_view.h"
+#include "server/physics/soil_view.h"
+#include "server/physics/solid_boundary.h"
+
+namespace cascade {
+
+template <typename Real, int Dim>
+struct SolidBoundaryPoreWater {
+  ParticleView<Real, Dim> p;
+  SoilView<Real, Dim> soil;
+  GridView<Real, Dim> grid;
+  SphConstants<Real, Dim> sph;
+
+  CASCADE_HD void operator()(std::uint32_t b) const {
+    const Vec<Real, Dim> x_g = p.ghost[b];
+    GhostInterpolation<Real, Dim, 1> ghost;
+    using Grid = GridView<Real, Dim>;
+    grid.template for_each_neighbour_in<Grid::kSoilBlock, Grid::kSoilBlock + 1>(
+        x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_gj, Real r2) {
+          const Real r = std::sqrt(r2);
+          Eigen::Matrix<Real, 1, 1> value;
+          value(0) = p.pressure[j];
+          ghost.add(sph.mass / p.density[j], sph.kernel.value(r), sph.kernel.gradient_factor(r) * x_gj, x_gj, value,
+                    soil.seepage[j]);
+        });
+    soil.pore_pressure[b] = ghost.empty() ? Real(0) : ghost.extrapolate(p.position[b], x_g)(0);
+  }
+};
+
+template <typename Real, int Dim>
+struct SolidBoundarySeepage {
+  ParticleView<Real, Dim> p;
+  SoilView<Real, Dim> soil;
+  GridView<Real, Dim> grid;
+  SphConstants<Real, Dim> sph;
+
+  CASCADE_HD void operator()(std::uint32_t b) const {
+    const Vec<Real, Dim> x_g = p.ghost[b];
+    Real shepard = 0;
+    Vec<Real, Dim> q = Vec<Real, Dim>::Zero();
+    using Grid = GridView<Real, Dim>;
+    grid.template for_each_neighbour_in<Grid::kSoilBlock, Grid::kSoilBlock + 1>(
+        x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>&, Real r2) {
+          const Real weight = sph.kernel.value(std::sqrt(r2)) * sph.mass / p.density[j];
+          shepard += weight;
+          q += weight * soil.seepage[j];
+        });
+    soil.seepage[b] = shepard > Real(0) ? Vec<Real, Dim>(-q / shepard) : Vec<Real, Dim>::Zero();
+  }
+};
+
+}  // namespace cascade
