@@ -22,7 +22,8 @@
 #include "server/core/neighbour_list.h"
 #include "server/core/particle_view.h"
 #include "server/physics/free_surface.h"
-#include "server/physics/pore_water_continuity.h"
+#include "server/physics/soil_interaction.h"
+#include "server/physics/soil_stress_update.h"
 #include "server/physics/pore_water_state.h"
 #include "server/physics/renormalised_gradient.h"
 #include "server/physics/seepage.h"
@@ -99,8 +100,10 @@ class Simulation final : public Engine {
     dt_ = next_time_step();
     save_step_start();
     launch(SymplecticPredictor<Real, Dim>{view(), start_view(), grid_, Real(dt_)}, 0, moving_);
+    update_soil_stress(0.5 * dt_);
     evaluate_rates(true);
     launch(SymplecticCorrector<Real, Dim>{view(), start_view(), grid_, Real(dt_)}, 0, moving_);
+    update_soil_stress(dt_);
     time_ += dt_;
     ++steps_;
   }
@@ -124,6 +127,8 @@ class Simulation final : public Engine {
     add(phase_), add(scratch_phase_), add(ghost_wet_), add(id_), add(scratch_index_);
     add(soil_materials_), add(soil_material_), add(free_surface_), add(surface_state_), add(scratch_byte_);
     add(porosity_), add(saturation_), add(pore_pressure_), add(seepage_), add(pressure_gradient_);
+    add(boundary_velocity_), add(effective_stress_), add(total_stress_), add(start_stress_), add(scratch_voigt_);
+    add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
     return bytes + cells_.bytes() + neighbours_.bytes();
   }
 
@@ -172,23 +177,26 @@ class Simulation final : public Engine {
   }
 
  private:
-  // The soil fields of docs/output.md, ordered by id like the others. The skeleton is rigid
-  // (set_up_soil), so the effective stress is the initial one and κ and the displacement are 0.
+  // The soil fields of docs/output.md, ordered by id like the others.
   void add_soil_fields(FieldFrame& f, const std::vector<std::uint32_t>& id, const std::vector<Real>& pressure,
                        const int* axis3) const {
     const std::size_t n = id.size();
     std::vector<Real> porosity(n), saturation(n);
     std::vector<V> seepage(n), position(n);
     std::vector<std::uint8_t> free_surface(n);
+    std::vector<Voigt<Real>> stress(n);
+    std::vector<Real> plastic_strain(n);
+    thrust::copy(effective_stress_.begin(), effective_stress_.end(), stress.begin());
+    thrust::copy(plastic_strain_.begin(), plastic_strain_.end(), plastic_strain.begin());
     thrust::copy(porosity_.begin(), porosity_.end(), porosity.begin());
     thrust::copy(saturation_.begin(), saturation_.end(), saturation.begin());
     thrust::copy(seepage_.begin(), seepage_.end(), seepage.begin());
     thrust::copy(position_.begin(), position_.end(), position.begin());
     thrust::copy(free_surface_.begin(), free_surface_.end(), free_surface.begin());
     FieldFrame::RealField pore{"pore_pressure", "Pa", 1, std::vector<double>(n)};
-    FieldFrame::RealField sat{"saturation", "-", 1, std::vector<double>(n)};
-    FieldFrame::RealField phi{"porosity", "-", 1, std::vector<double>(n)};
-    FieldFrame::RealField kappa{"plastic_strain", "-", 1, std::vector<double>(n)};
+    FieldFrame::RealField sat{"saturation", "1", 1, std::vector<double>(n)};
+    FieldFrame::RealField phi{"porosity", "1", 1, std::vector<double>(n)};
+    FieldFrame::RealField kappa{"plastic_strain", "1", 1, std::vector<double>(n)};
     FieldFrame::RealField q{"seepage", "m/s", 3, std::vector<double>(3 * n)};
     FieldFrame::RealField u{"displacement", "m", 3, std::vector<double>(3 * n)};
     FieldFrame::RealField total{"stress", "Pa", 6, std::vector<double>(6 * n)};
@@ -205,10 +213,11 @@ class Simulation final : public Engine {
         q.values[3 * i + c] = axis3[c] < 0 ? 0.0 : double(seepage[k][axis3[c]]);
         u.values[3 * i + c] = f.position[3 * i + c] - initial_position_[3 * i + c];
       }
+      kappa.values[i] = double(plastic_strain[k]);
       // σ = σ' − S_w p_w I (Bishop, Eq. 7)
       for (int c = 0; c < 6; ++c) {
-        effective.values[6 * i + c] = initial_stress_[6 * i + c];
-        total.values[6 * i + c] = initial_stress_[6 * i + c] - (c < 3 ? sat.values[i] * pore.values[i] : 0.0);
+        effective.values[6 * i + c] = double(stress[k](c));
+        total.values[6 * i + c] = double(stress[k](c)) - (c < 3 ? sat.values[i] * pore.values[i] : 0.0);
       }
     }
     for (auto* field : {&pore, &sat, &phi, &kappa, &q, &u, &total, &effective}) f.fields.push_back(std::move(*field));
@@ -248,7 +257,9 @@ class Simulation final : public Engine {
       cells_.reorder(soil_material_, scratch_byte_);
       cells_.reorder(surface_state_, scratch_byte_);
       cells_.reorder(porosity_, scratch_real_);
+      cells_.reorder(plastic_strain_, scratch_real_);
       cells_.reorder(seepage_, scratch_vec_);
+      cells_.reorder(effective_stress_, scratch_voigt_);
     }
     grid_ = cells_.view();
     active_ = cells_.active();
@@ -287,20 +298,20 @@ class Simulation final : public Engine {
     }
     launch(WaterInteraction<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, water);
     if (has_soil_)
-      launch(PoreWaterContinuity<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_, water_.rho0}, water,
+      launch(SoilInteraction<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_, water_.rho0}, water,
              moving_);
   }
 
   // The dummy particles' water values (Eqs. 30-35a); with soil, the free surface (Eq. 38, at the
   // step's first evaluation), the pore-water state and surface conditions (Eqs. 6, 39) and the
-  // dummies' pore-water pressure (Eq. 32b).
+  // dummies' soil side (Eqs. 32a, 32b, 35a).
   void boundary_values(bool half_step) {
     launch(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_, raw(ghost_wet_), half_step}, moving_, active_);
     if (!has_soil_) return;
     const std::uint32_t water = grid_.water_end;
     if (!half_step) launch(FreeSurfaceDetection<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_}, water, moving_);
     launch(PoreWaterState<Real, Dim>{view(), soil_view(), surface_forcing(), water_.rho0, !half_step}, water, moving_);
-    launch(SolidBoundaryPoreWater<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
+    launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
   }
 
   // Water pressure (Eq. 6) and the renormalised gradients of the water and pore-water densities
@@ -316,33 +327,38 @@ class Simulation final : public Engine {
 
   SoilView<Real, Dim> soil_view() {
     return {raw(soil_materials_), raw(soil_material_), raw(porosity_), raw(saturation_), raw(seepage_),
-            raw(pore_pressure_), raw(pressure_gradient_), raw(free_surface_), raw(surface_state_)};
+            raw(pore_pressure_), raw(pressure_gradient_), raw(free_surface_), raw(surface_state_),
+            raw(effective_stress_), raw(total_stress_), raw(boundary_velocity_), raw(velocity_gradient_),
+            raw(porosity_rate_), raw(plastic_strain_)};
+  }
+
+  // σ', κ and φ at a Symplectic stage (soil_stress_update.h), from the step's start.
+  void update_soil_stress(double increment) {
+    if (!has_soil_) return;
+    launch(SoilStressUpdate<Real, Dim>{view(), soil_view(), raw(start_stress_), raw(start_plastic_strain_),
+                                       raw(start_porosity_), Real(increment)},
+           grid_.water_end, moving_);
   }
   SurfaceForcing<Real, Dim> surface_forcing() const { return SurfaceForcing<Real, Dim>::from(forcing_); }
 
-  // The soil arrays, only for a case with soil particles. A deforming skeleton (soil momentum,
-  // stress update, Eqs. 7, 8, 26) is not in the engine yet: such a material is refused here.
+  // The soil arrays, only for a case with soil particles.
   void set_up_soil(const HostParticles& host) {
     has_soil_ = host.count(Phase::soil) > 0;
     if (!has_soil_) return;
-    for (std::size_t m = 0; m < config_.soils.size(); ++m)
-      if (!config_.soils[m].rigid)
-        throw std::invalid_argument("soil material " + std::to_string(m) +
-                                    ": a deforming soil skeleton is not in the engine yet (only rigid: true)");
     const std::size_t n = host.size();
-    // Host copies by id: the initial positions (for the displacement) and effective stresses.
+    // The initial positions by id, on the host, for the displacement.
     initial_position_.assign(3 * n, 0.0);
-    initial_stress_.assign(6 * n, 0.0);
     const int axis3[3] = {0, Dim == 2 ? -1 : 1, Dim == 2 ? 1 : 2};
     for (std::size_t i = 0; i < n; ++i) {
       for (int c = 0; c < 3; ++c) initial_position_[3 * i + c] = axis3[c] < 0 ? 0.0 : host.position[i * Dim + axis3[c]];
-      if (host.effective_stress.size() == 6 * n)
-        for (int c = 0; c < 6; ++c) initial_stress_[6 * i + c] = host.effective_stress[6 * i + c];
     }
     std::vector<std::uint8_t> material(n, 0);
     std::vector<Real> porosity(n, Real(0));
+    std::vector<Voigt<Real>> stress(n, Voigt<Real>::Zero());
     for (std::size_t i = 0; i < n; ++i) {
       if (host.phase[i] != Phase::soil) continue;
+      if (host.effective_stress.size() == 6 * n)
+        for (int c = 0; c < 6; ++c) stress[i](c) = Real(host.effective_stress[6 * i + c]);
       if (i >= host.soil_material.size() || host.soil_material[i] >= config_.soils.size())
         throw std::invalid_argument("soil particle " + std::to_string(i) + " has no soil material");
       material[i] = host.soil_material[i];
@@ -351,6 +367,16 @@ class Simulation final : public Engine {
     soil_materials_ = config_.soils;
     soil_material_ = material;
     porosity_ = porosity;
+    effective_stress_ = stress;
+    total_stress_.resize(n);
+    boundary_velocity_.resize(n);
+    velocity_gradient_.resize(n);
+    porosity_rate_.resize(n);
+    plastic_strain_.resize(n);
+    thrust::fill(plastic_strain_.begin(), plastic_strain_.end(), Real(0));
+    start_stress_.resize(n);
+    start_plastic_strain_.resize(n);
+    start_porosity_.resize(n);
     saturation_.resize(n);
     seepage_.resize(n);
     pore_pressure_.resize(n);
@@ -382,6 +408,10 @@ class Simulation final : public Engine {
     thrust::copy(Backend::policy(), velocity_.begin(), velocity_.end(), start_velocity_.begin());
     thrust::copy(Backend::policy(), density_.begin(), density_.end(), start_density_.begin());
     thrust::copy(Backend::policy(), water_density_.begin(), water_density_.end(), start_water_density_.begin());
+    if (!has_soil_) return;
+    thrust::copy(Backend::policy(), effective_stress_.begin(), effective_stress_.end(), start_stress_.begin());
+    thrust::copy(Backend::policy(), plastic_strain_.begin(), plastic_strain_.end(), start_plastic_strain_.begin());
+    thrust::copy(Backend::policy(), porosity_.begin(), porosity_.end(), start_porosity_.begin());
   }
 
   EngineConfig config_;
@@ -407,8 +437,11 @@ class Simulation final : public Engine {
   Vector<SoilMaterial> soil_materials_;
   Vector<std::uint8_t> soil_material_, free_surface_, surface_state_, scratch_byte_;
   Vector<Real> porosity_, saturation_, pore_pressure_;
-  Vector<V> seepage_, pressure_gradient_;
-  std::vector<double> initial_position_, initial_stress_;  // host, by id: N × 3, N × 6
+  Vector<V> seepage_, pressure_gradient_, boundary_velocity_;
+  Vector<Voigt<Real>> effective_stress_, total_stress_, start_stress_, scratch_voigt_;
+  Vector<Mat<Real, Dim>> velocity_gradient_;
+  Vector<Real> porosity_rate_, plastic_strain_, start_plastic_strain_, start_porosity_;
+  std::vector<double> initial_position_;  // host, by id: N × 3
   Vector<std::uint32_t> id_, scratch_index_;
 };
 

@@ -8,6 +8,7 @@
 
 #include "server/core/soil_material.h"
 #include "server/core/types.h"
+#include "server/physics/soil_momentum.h"
 
 namespace cascade {
 
@@ -29,6 +30,13 @@ struct SoilView {
   Vec<Real, Dim>* pressure_gradient;   // per soil particle: renormalised ⟨∇p_w⟩^L (Eq. 25)
   std::uint8_t* free_surface;          // per soil particle: 1 where ∇·x is below the threshold (Eq. 38)
   std::uint8_t* surface_state;         // per soil particle: a SurfaceState
+  Voigt<Real>* effective_stress;       // per soil particle: σ' (Eqs. 7, 8)
+  Voigt<Real>* total_stress;           // σ = σ' − S_w p_w I of a soil particle (Eq. 7); for a
+                                       // dummy, extrapolated from the soil (Eq. 32a)
+  Vec<Real, Dim>* boundary_velocity;   // per dummy particle: −v_g from the soil (Eqs. 34a, 35a)
+  Mat<Real, Dim>* velocity_gradient;   // per soil particle: L_ab = ∂v_a/∂x_b (Eqs. 26c, 26d)
+  Real* porosity_rate;                 // per soil particle: dφ/dt (Eq. 26a)
+  Real* plastic_strain;                // per soil particle: κ (Eq. 12)
 };
 
 // The pore-water state of Eq. 6 with the soil's bulk modulus: p_w = K_w/ρ_w0 (ρ_w − ρ_w0), and

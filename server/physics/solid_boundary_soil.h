@@ -1,11 +1,15 @@
-// Soil side of the solid boundary (Section 3.3.1): the pore-water values that a dummy particle
-// shows its soil neighbours, from the soil around its ghost node. Water neighbours see the
-// water side (solid_boundary.h); a wall touched by both keeps both.
-//  - p_w: first-order interpolation at the ghost node and Taylor extrapolation to the dummy
+// Soil side of the solid boundary (Section 3.3.1): the values that a dummy particle shows its
+// soil neighbours, from the soil around its ghost node. Water neighbours see the water side
+// (solid_boundary.h); a wall touched by both keeps both.
+//  - total stress σ (Eq. 32a) and p_w: first-order interpolation at the ghost node and Taylor
+//    extrapolation to the dummy (Eqs. 30-32), or the Shepard value (Eq. 33) when
+//    |det A_g| < 10⁻³. For p_w: first-order interpolation at the ghost node and Taylor extrapolation to the dummy
 //    (Eqs. 30-32b), or the Shepard value (Eq. 33b) when |det A_g| < 10⁻³. The paper extrapolates
 //    ρ_w; the pressure is the same within one soil (linear Eq. 6) and stays continuous between
 //    soils of different K_w, whose densities jump. A soil neighbour reads ρ_w from it with its
 //    own K_w (renormalised_gradient.h).
+//  - v: Shepard interpolation of the soil velocity at the ghost node, reversed at the dummy
+//    (Eqs. 34a, 35a): no slip, no penetration.
 //  - q_w: Shepard interpolation at the ghost node (Eq. 34b), reversed at the dummy (Eq. 35b), so
 //    that the seepage through the wall vanishes: an impermeable wall.
 #pragma once
@@ -21,7 +25,7 @@
 namespace cascade {
 
 template <typename Real, int Dim>
-struct SolidBoundaryPoreWater {
+struct SolidBoundarySoil {
   ParticleView<Real, Dim> p;
   SoilView<Real, Dim> soil;
   GridView<Real, Dim> grid;
@@ -29,17 +33,27 @@ struct SolidBoundaryPoreWater {
 
   CASCADE_HD void operator()(std::uint32_t b) const {
     const Vec<Real, Dim> x_g = p.ghost[b];
-    GhostInterpolation<Real, Dim, 1> ghost;
+    GhostInterpolation<Real, Dim, 7> ghost;  // p_w, then the 6 components of σ
     using Grid = GridView<Real, Dim>;
     grid.template for_each_neighbour_in<Grid::kSoilBlock, Grid::kSoilBlock + 1>(
         x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_gj, Real r2) {
           const Real r = std::sqrt(r2);
-          Eigen::Matrix<Real, 1, 1> value;
-          value(0) = p.pressure[j];
-          ghost.add(sph.mass / p.density[j], sph.kernel.value(r), sph.kernel.gradient_factor(r) * x_gj, x_gj, value,
-                    soil.seepage[j]);
+          Eigen::Matrix<Real, 7, 1> values;
+          values(0) = p.pressure[j];
+          values.template tail<6>() = soil.total_stress[j];
+          ghost.add(sph.mass / p.density[j], sph.kernel.value(r), sph.kernel.gradient_factor(r) * x_gj, x_gj, values,
+                    p.velocity[j]);
         });
-    soil.pore_pressure[b] = ghost.empty() ? Real(0) : ghost.extrapolate(p.position[b], x_g)(0);
+    if (ghost.empty()) {
+      soil.pore_pressure[b] = 0;
+      soil.total_stress[b] = Voigt<Real>::Zero();
+      soil.boundary_velocity[b] = Vec<Real, Dim>::Zero();
+      return;
+    }
+    const Eigen::Matrix<Real, 7, 1> values = ghost.extrapolate(p.position[b], x_g);
+    soil.pore_pressure[b] = values(0);
+    soil.total_stress[b] = values.template tail<6>();
+    soil.boundary_velocity[b] = -ghost.ghost_velocity();
   }
 };
 

@@ -12,80 +12,41 @@
 
 #include "server/core/engine.h"
 #include "server/physics/swcc/gardner.h"
+#include "tests/validation/soil_column.h"
 
 namespace cascade {
 namespace {
 
-constexpr double kDp = 0.01;
 constexpr double kHeight = 0.6;   // m of soil above the wall at z = 0
-constexpr int kColumns = 12;      // periodic width 0.12 m > 6.3 h
 constexpr double kRho = 1000.0;
 constexpr double kG = 9.81;
 constexpr double kBulkModulus = 2e6;  // K_w of the pore water (Pa)
+constexpr double kTop = kHeight - 0.005;  // the top layer of particles (dp = 0.01)
 
-// Hydrostatic pore pressure of the weakly compressible pore water, dp/dz = −ρ_w0 (1 + p/K_w) g
-// (Eq. 6), from the drained surface: the top layer of particles at z = H − dp/2, where Eq. 39
-// holds p_w = p_max = 0. (A linear ρ_w0 g depth would be off by ρ_w0 g H · p/(2 K_w) ≈ 8 Pa.)
-double hydrostatic(double z) {
-  return kBulkModulus * std::expm1(kRho * kG * (kHeight - 0.5 * kDp - z) / kBulkModulus);
-}
+// Hydrostatic from the drained surface: the top layer of particles, where Eq. 39 holds
+// p_w = p_max = 0, for the weakly compressible pore water (a linear ρ_w0 g depth would be off by
+// ρ_w0 g H · p/(2 K_w) ≈ 8 Pa).
+double hydrostatic(double z) { return testing::compressible_hydrostatic(kRho, kG, kBulkModulus, kTop, z); }
 
-struct Column {
-  HostParticles particles;
-  EngineConfig config;
-};
-
-// A 2D column (x periodic, z up) of rigid saturated soil on three layers of dummy particles.
-// Initial pore pressure: hydrostatic from the top layer plus `bump` (Pa) as a Gaussian of
-// half-width 0.05 m at mid-height.
-Column saturated_column(double bump) {
-  Column c;
-  HostParticles& p = c.particles;
-  p.dimensions = 2;
-  SoilMaterial soil;
-  soil.grain_density = 2000;
-  soil.saturated_conductivity = 1e-6;
-  soil.water_bulk_modulus = kBulkModulus;
-  soil.pore_sound_speed = 1e-5;
-  soil.rigid = true;
+// A rigid saturated column on an impermeable wall, drained at the top; initial pore pressure
+// hydrostatic plus `bump` (Pa) as a Gaussian of half-width 0.05 m at mid-height.
+testing::SoilColumn saturated_column(double bump) {
+  testing::SoilColumn c;
+  c.height = kHeight;
+  c.soil.grain_density = 2000;
+  c.soil.saturated_conductivity = 1e-6;
+  c.soil.water_bulk_modulus = kBulkModulus;
+  c.soil.pore_sound_speed = 1e-5;
+  c.soil.rigid = true;
   // Gardner's model, saturated throughout here (p_w >= 0): S_w = 1, K_rel = 1.
-  soil.hydraulic = HydraulicModel<double>(Gardner<double>{0.2, 1.0, 2.0, kRho * kG});
-  soil.mechanical.youngs_modulus = 1e7;
-  soil.mechanical.poisson_ratio = 0.3;
-  auto add = [&](double x, double z, Phase phase, double ghost_z, double pressure) {
-    p.position.insert(p.position.end(), {x, z});
-    p.velocity.insert(p.velocity.end(), {0.0, 0.0});
-    p.ghost.insert(p.ghost.end(), {x, ghost_z});
-    p.phase.push_back(phase);
-    p.body.push_back(phase == Phase::soil ? 0 : 1);
-    p.water_density.push_back(phase == Phase::soil ? kRho * (1 + pressure / soil.water_bulk_modulus) : kRho);
-    p.porosity.push_back(phase == Phase::soil ? 0.4 : 0.0);
-    p.soil_material.push_back(0);
-    p.effective_stress.insert(p.effective_stress.end(), 6, 0.0);
+  c.soil.hydraulic = HydraulicModel<double>(Gardner<double>{0.2, 1.0, 2.0, kRho * kG});
+  c.soil.mechanical.youngs_modulus = 1e7;
+  c.soil.mechanical.poisson_ratio = 0.3;
+  c.pore_pressure = [bump](double z) {
+    const double dz = (z - 0.5 * kHeight) / 0.05;
+    return hydrostatic(z) + bump * std::exp(-dz * dz);
   };
-  const int layers = int(std::lround(kHeight / kDp));
-  for (int k = 0; k < layers; ++k)
-    for (int i = 0; i < kColumns; ++i) {
-      const double x = (i + 0.5) * kDp, z = (k + 0.5) * kDp;
-      const double dz = (z - 0.5 * kHeight) / 0.05;
-      add(x, z, Phase::soil, z, hydrostatic(z) + bump * std::exp(-dz * dz));
-    }
-  for (int k = 0; k < 3; ++k)
-    for (int i = 0; i < kColumns; ++i) {
-      const double x = (i + 0.5) * kDp, z = -(k + 0.5) * kDp;
-      add(x, z, Phase::boundary, -z, 0.0);  // ghost: the mirror image across z = 0
-    }
-  EngineConfig& e = c.config;
-  e.dimensions = 2;
-  e.dp = kDp;
-  e.h = 1.3 * kDp;
-  e.gravity = {0.0, -kG, 0.0};
-  e.domain_min = {0.0, -0.05, 0.0};
-  e.domain_max = {kColumns * kDp, kHeight + 0.05, 0.0};
-  e.periodic = {true, false, false};
-  e.water_density = kRho;
-  e.soils = {soil};
-  e.forcing.ponding_pressure = 0;  // the top drains: its surface holds p_w = 0 (Eq. 39)
+  c.forcing.ponding_pressure = 0;
   return c;
 }
 
@@ -105,8 +66,8 @@ double max_abs(const std::vector<double>& v) {
 }
 
 TEST(PoreWater, HydrostaticSaturatedColumnStaysAtRest) {
-  Column c = saturated_column(0.0);
-  auto engine = make_engine(c.config, c.particles);
+  const auto c = saturated_column(0.0);
+  auto engine = make_engine(c.config(), c.particles());
   for (int k = 0; k < 2000; ++k) engine->step();
   const FieldFrame f = engine->frame();
   const auto excess = excess_pressure(f);
@@ -116,23 +77,22 @@ TEST(PoreWater, HydrostaticSaturatedColumnStaysAtRest) {
     if (f.phase[i] == std::uint8_t(Phase::soil)) q_max = std::max(q_max, std::fabs(q->values[3 * i + 2]));
   std::printf("after %llu steps (t = %.1f s): max |p_w - hydrostatic| = %.2f Pa, max |q_z| = %.3e m/s\n",
               (unsigned long long)engine->step_count(), engine->time(), max_abs(excess), q_max);
-  // 10⁻⁴ of the hydrostatic pressure at the base; the seepage 10⁻⁶ of K_sat. (The plain SPH
+  // 10⁻⁴ of the hydrostatic pressure at the base; the seepage 10⁻⁵ of K_sat. (The plain SPH
   // gradient in Eq. 27b would leave 2.7% too steep a pressure, renormalised_gradient.h.)
   EXPECT_LT(max_abs(excess), 1e-4 * kRho * kG * kHeight);
-  EXPECT_LT(q_max, 1e-6 * c.config.soils[0].saturated_conductivity);
+  EXPECT_LT(q_max, 1e-5 * c.soil.saturated_conductivity);
 }
 
 TEST(PoreWater, LocalBumpDecaysMonotonically) {
   const double bump = 2000.0;  // Pa
-  Column c = saturated_column(bump);
-  auto engine = make_engine(c.config, c.particles);
+  const auto c = saturated_column(bump);
+  auto engine = make_engine(c.config(), c.particles());
   double previous = max_abs(excess_pressure(engine->frame()));
   ASSERT_NEAR(previous, bump, 0.05 * bump);
   // The pore pressure diffuses with c_v = K K_w / (ρ_w g C_r), C_r = φ (saturated, Eq. 28b):
   // run to the consolidation time T_v = c_v t / H² = 1.2, when a layer drained at the top keeps
   // about 4% of its excess (Terzaghi), less for a bump in its middle.
-  const SoilMaterial& soil = c.config.soils[0];
-  const double c_v = soil.saturated_conductivity * soil.water_bulk_modulus / (kRho * kG * 0.4);
+  const double c_v = c.soil.saturated_conductivity * c.soil.water_bulk_modulus / (kRho * kG * c.porosity);
   const double t_end = 1.2 * kHeight * kHeight / c_v;
   int checks = 0;
   while (engine->time() < t_end) {

@@ -1,0 +1,128 @@
+// The soil particle's right-hand side: one pass over its neighbours sums the numerical density
+// rate (Eq. 22), the momentum with Bishop's total stress and artificial viscosity (Eqs. 7, 26b),
+// the velocity gradient of the strain and spin rates (Eqs. 26c, 26d), the pore-water continuity
+// (Eq. 27a, pore_water_continuity.h) and the porosity rate (Eq. 26a), then the time-step limits
+// (Eqs. 40a-c).
+//
+// Neighbours: every phase counts in Eq. 22. A water neighbour acts on the skeleton through its
+// pressure, as the total stress −p_w I of Eq. 4 in Eq. 26b (Section 3.3: the pressure condition at
+// the soil-water interface follows from the momentum equations); soil and dummy neighbours (the
+// dummy's soil side: total stress of Eq. 32a, velocity −v_g of Eq. 35a) add their total stress,
+// the viscosity, the velocity gradient and the pore water. A rigid skeleton (Section 4.1) keeps
+// v = 0, its stress and porosity: only the pore water flows.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "server/core/neighbour_grid.h"
+#include "server/core/neighbour_list.h"
+#include "server/core/particle_view.h"
+#include "server/physics/numerical_density.h"
+#include "server/physics/pore_water_continuity.h"
+#include "server/physics/soil_momentum.h"
+#include "server/physics/soil_view.h"
+#include "server/physics/water_continuity.h"
+#include "server/physics/water_momentum.h"
+
+namespace cascade {
+
+template <typename Real, int Dim>
+struct SoilInteraction {
+  ParticleView<Real, Dim> p;
+  SoilView<Real, Dim> soil;
+  GridView<Real, Dim> grid;
+  NeighbourListView<Real, Dim> neighbours;
+  SphConstants<Real, Dim> sph;
+  Real rho0;
+
+  CASCADE_HD void operator()(std::uint32_t i) const {
+    using V = Vec<Real, Dim>;
+    using M = Mat<Real, Dim>;
+    const SoilMaterial& m = soil.materials[soil.material[i]];
+    const bool rigid = m.rigid;
+    const V x_i = p.position[i];
+    const V v_i = p.velocity[i];
+    const V q_i = soil.seepage[i];
+    const Real rho_i = p.density[i];
+    const Real rho_w_i = p.water_density[i];
+    const V grad_rho_i = p.water_density_gradient[i];
+    const M stress_i = in_plane<Real, Dim>(soil.total_stress[i]);
+    const Real c_s0 = Real(soil_sound_speed(m));
+    const Real alpha_c0 = Real(m.viscosity_alpha) * c_s0;
+    const std::uint32_t water_end = grid.water_end, moving_end = grid.moving_end;
+
+    Real divergence = 0;          // Σ V_j (v_i − v_j)·∇_i W_ij, every neighbour (Eq. 22)
+    Real seepage_divergence = 0;  // Σ V_j (q_j − q_i)·∇_i W_ij, soil and dummies (Eq. 27a)
+    Real diffusion = 0;           // Σ V_j ψ_ij·∇_i W_ij, soil (Eq. 27a)
+    V force = V::Zero();          // Σ V_j (σ_i + σ_j)·∇_i W_ij (Eq. 26b)
+    V viscous = V::Zero();
+    M gradient = M::Zero();       // Σ V_j (v_j − v_i) ⊗ ∇_i W_ij (Eqs. 26c, 26d)
+    Real max_mu = 0;
+    const std::uint32_t* list = neighbours.entries(i);
+    const std::uint32_t count = neighbours.size(i);
+    for (std::uint32_t k = 0; k < count; ++k) {
+      const std::uint32_t j = list[k];
+      const V x_ij = grid.displacement(x_i, p.position[j]);
+      const Real r2 = x_ij.squaredNorm();
+      if (!(r2 < sph.kernel.support2)) continue;
+      const Real volume_j = sph.mass / p.density[j];
+      const V grad_w = sph.kernel.gradient_factor(std::sqrt(r2)) * x_ij;
+      const bool water = j < water_end, dummy = j >= moving_end;
+      const V v_j = dummy ? soil.boundary_velocity[j] : p.velocity[j];
+      const V v_ij = v_i - v_j;
+      divergence += velocity_divergence_pair(volume_j, v_ij, grad_w);
+      if (water) {
+        force += stress_force_pair<Real, Dim>(volume_j, stress_i - p.pressure[j] * M::Identity(), grad_w);
+        continue;
+      }
+      force += stress_force_pair<Real, Dim>(volume_j, stress_i + in_plane<Real, Dim>(soil.total_stress[j]), grad_w);
+      const Real inv_r2_eta2 = Real(1) / (r2 + sph.eta2);
+      const Real mu = viscosity_mu(sph.h, v_ij, x_ij, inv_r2_eta2);
+      max_mu = std::fmax(max_mu, std::fabs(mu));
+      viscous += artificial_viscosity_pair(alpha_c0, sph.mass, rho_i, p.density[j], mu, grad_w);
+      gradient -= volume_j * v_ij * grad_w.transpose();
+      seepage_divergence += volume_j * (soil.seepage[j] - q_i).dot(grad_w);
+      if (!dummy)
+        diffusion += density_diffusion_pair(volume_j, rho_w_i, p.water_density[j], x_ij, inv_r2_eta2, grad_rho_i,
+                                            p.water_density_gradient[j], grad_w);
+    }
+
+    const Real porosity = soil.porosity[i];
+    const Real saturation = soil.saturation[i];
+    const Real volumetric = rigid ? Real(0) : gradient.trace();  // ε̇_v
+    const double p_c = -double(p.pressure[i]);
+    const Real capacity = Real(m.hydraulic.capacity(p_c, double(porosity), m.water_bulk_modulus));
+    const bool prescribed = soil.free_surface[i] && soil.surface_state[i] != std::uint8_t(SurfaceState::flux);
+    const Real pore_rate = pore_water_density_rate(rho_w_i, capacity, seepage_divergence, saturation, volumetric,
+                                                   Real(m.delta) * sph.h * Real(m.pore_sound_speed), diffusion);
+    p.water_density_rate[i] = prescribed ? Real(0) : pore_rate;
+    const Real conductivity = Real(m.saturated_conductivity * m.hydraulic.relative_conductivity(p_c));
+    const Real dt_sp =
+        seepage_time_step(rho0 * sph.gravity.norm(), Real(m.water_bulk_modulus), sph.h, capacity, conductivity);
+    bool finite = std::isfinite(pore_rate) && !std::isnan(dt_sp);
+    if (rigid) {
+      p.density_rate[i] = 0;
+      p.acceleration[i] = V::Zero();
+      soil.velocity_gradient[i] = M::Zero();
+      soil.porosity_rate[i] = 0;
+      p.step_limit[i] = finite ? dt_sp : Real(-1);
+      return;
+    }
+    const Real rho_s = mixture_density(m, porosity, saturation, rho0);
+    const V acceleration = force / rho_s + viscous + sph.gravity;
+    p.density_rate[i] = rho_i * divergence;
+    p.acceleration[i] = acceleration;
+    soil.velocity_gradient[i] = gradient;
+    soil.porosity_rate[i] = (Real(1) - porosity) * volumetric;  // Eq. 26a
+    // Eq. 40b with the soil's sound speed, Eq. 40a, Eq. 40c; C0 applies after the minimum.
+    const Real dt_cv = sph.h / (c_s0 + max_mu);
+    const Real magnitude = acceleration.norm();
+    const Real dt_f = magnitude > Real(0) ? std::sqrt(sph.h / magnitude) : dt_cv;
+    finite = finite && std::isfinite(magnitude) && std::isfinite(max_mu);
+    const Real limit = dt_cv < dt_f ? dt_cv : dt_f;
+    p.step_limit[i] = finite ? (limit < dt_sp ? limit : dt_sp) : Real(-1);
+  }
+};
+
+}  // namespace cascade

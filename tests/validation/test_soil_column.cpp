@@ -1,0 +1,103 @@
+// Consolidation of a deforming, saturated, linear-elastic soil column (Eqs. 7, 8, 22, 26a-d, 27a-b, 28a, 29, 32a,
+// 35a, 35b), built particle by particle (soil_column.h):
+//  - at geostatic stress and hydrostatic pore pressure it stays at rest.
+// (Terzaghi's consolidation against tests/reference/terzaghi.h is not here yet: with this column
+// under a rigid porous cap the excess pore pressure runs 7-11% of u_0 below the series solution
+// at T_v = 0.05-0.5, against the 5% the issue asks; see docs/physics.md.)
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "server/physics/swcc/gardner.h"
+#include "tests/reference/terzaghi.h"  // the oedometric modulus
+#include "tests/validation/soil_column.h"
+
+namespace cascade {
+namespace {
+
+constexpr double kRho = 1000.0, kG = 9.81, kBulkModulus = 2e6;
+constexpr double kYoung = 1e7, kPoisson = 0.3, kGrain = 2000.0;
+
+// The saturated column: mixture density ρ_s (Eq. 28a, S_w = 1), total vertical stress from the
+// top surface, pore pressure hydrostatic from the drained top layer, effective stress
+// σ' = σ + p_w I (Eq. 7) with σ'_xx = σ'_yy = K_0 σ'_zz, K_0 = ν/(1 − ν). h/dp = 1.5: at 1.3 the
+// lattice moment of the plain SPH stress divergence (0.974 in 2D, docs/physics.md) would leave the
+// column 2.6% short of holding its weight.
+testing::SoilColumn elastic_column(double conductivity) {
+  testing::SoilColumn c;
+  c.h_over_dp = 1.5;
+  c.height = 0.3;
+  c.soil.grain_density = kGrain;
+  c.soil.saturated_conductivity = conductivity;
+  c.soil.water_bulk_modulus = kBulkModulus;
+  c.soil.pore_sound_speed = 1e-3;
+  c.soil.rigid = false;
+  c.soil.hydraulic = HydraulicModel<double>(Gardner<double>{0.2, 1.0, 2.0, kRho * kG});
+  c.soil.mechanical.kind = SoilModel<double>::Kind::linear_elastic;
+  c.soil.mechanical.youngs_modulus = kYoung;
+  c.soil.mechanical.poisson_ratio = kPoisson;
+  const double top = c.top_layer(), height = c.height;
+  const double rho_s = (1 - c.porosity) * kGrain + c.porosity * kRho;
+  const auto hydrostatic = [=](double z) { return testing::compressible_hydrostatic(kRho, kG, kBulkModulus, top, z); };
+  c.pore_pressure = hydrostatic;
+  c.effective_stress = [=](double z) {
+    const double vertical = -rho_s * kG * (height - z) + hydrostatic(z);  // σ'_zz = σ_zz + p_w
+    const double lateral = kPoisson / (1 - kPoisson) * vertical;
+    Voigt<double> s;
+    s << lateral, lateral, vertical, 0, 0, 0;
+    return s;
+  };
+  c.forcing.ponding_pressure = 0;  // the drained top (Eq. 39)
+  return c;
+}
+
+struct Profile {
+  std::vector<double> z, excess;
+};
+
+// Pore pressure over hydrostatic in one vertical line of particles.
+Profile excess_profile(const FieldFrame& f, double top) {
+  Profile out;
+  const auto* p = f.find("pore_pressure");
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (f.phase[i] == std::uint8_t(Phase::soil) && f.position[3 * i] < 0.01) {
+      const double z = f.position[3 * i + 2];
+      out.z.push_back(z);
+      out.excess.push_back(p->values[i] - testing::compressible_hydrostatic(kRho, kG, kBulkModulus, top, z));
+    }
+  return out;
+}
+
+TEST(SoilColumn, GeostaticElasticColumnStaysAtRest) {
+  const auto c = elastic_column(1e-4);
+  auto engine = make_engine(c.config(), c.particles());
+  for (int k = 0; k < 3000; ++k) engine->step();
+  const FieldFrame f = engine->frame();
+  const auto* v = f.find("velocity");
+  const auto* u = f.find("displacement");
+  double v_max = 0, u_max = 0;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (f.phase[i] == std::uint8_t(Phase::soil)) {
+      v_max = std::max(v_max, std::hypot(v->values[3 * i], v->values[3 * i + 2]));
+      u_max = std::max(u_max, std::fabs(u->values[3 * i + 2]));
+    }
+  const auto profile = excess_profile(f, c.top_layer());
+  double p_max = 0;
+  for (double e : profile.excess) p_max = std::max(p_max, std::fabs(e));
+  // The settlement that the full self-weight would cause if it were applied from zero stress: the
+  // column may deform by a small part of it while the SPH stress divergence finds its balance.
+  const double rho_s = (1 - c.porosity) * kGrain + c.porosity * kRho;
+  const double modulus = reference::oedometric_modulus(kYoung, kPoisson);
+  const double self_weight_settlement = (rho_s - kRho) * kG * c.height * c.height / (2 * modulus);
+  std::printf("t = %.4f s, %llu steps: max |v| = %.3e m/s, max |u_z| = %.3e m (self-weight settlement %.3e m), "
+              "max |p_w - hydrostatic| = %.2f Pa\n",
+              engine->time(), (unsigned long long)engine->step_count(), v_max, u_max, self_weight_settlement, p_max);
+  EXPECT_LT(u_max, 0.05 * self_weight_settlement);
+  EXPECT_LT(v_max, 1e-4);
+  EXPECT_LT(p_max, 0.005 * kRho * kG * c.height);
+}
+
+}  // namespace
+}  // namespace cascade
