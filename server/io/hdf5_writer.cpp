@@ -84,8 +84,9 @@ void write_dataset(hid_t group, const std::string& name, hid_t file_type, hid_t 
   write_string_attribute(dataset, "units", units);
 }
 
+// Datasets of FieldFrame's own members; a RealField may not take their names.
 bool is_reserved(const std::string& name) {
-  return name == "position" || name == "phase" || name == "id";
+  return name == "position" || name == "phase" || name == "id" || name == "free_surface";
 }
 
 void validate(const FieldFrame& frame) {
@@ -99,6 +100,9 @@ void validate(const FieldFrame& frame) {
   if (frame.phase.size() != n)
     throw std::invalid_argument("phase has " + std::to_string(frame.phase.size()) +
                                 " values, expected " + std::to_string(n));
+  if (!frame.free_surface.empty() && frame.free_surface.size() != n)
+    throw std::invalid_argument("free_surface has " + std::to_string(frame.free_surface.size()) +
+                                " values, expected " + std::to_string(n) + " or none");
   for (std::size_t i = 0; i < frame.fields.size(); ++i) {
     const FieldFrame::RealField& f = frame.fields[i];
     if (f.name.empty() || f.name == "." || f.name.find('/') != std::string::npos ||
@@ -206,6 +210,12 @@ void Hdf5FieldWriter::write(const FieldFrame& frame) {
     write_dataset(group, "id", H5T_STD_U32LE, H5T_NATIVE_UINT32, n, 1, frame.id.data(), "1");
     grid.attributes.push_back({"phase", group_name + "/phase", 1, XdmfWriter::NumberType::uint8});
     grid.attributes.push_back({"id", group_name + "/id", 1, XdmfWriter::NumberType::uint32});
+    if (!frame.free_surface.empty() && selected("free_surface")) {
+      write_dataset(group, "free_surface", H5T_STD_U8LE, H5T_NATIVE_UINT8, n, 1,
+                    frame.free_surface.data(), "1");
+      grid.attributes.push_back(
+          {"free_surface", group_name + "/free_surface", 1, XdmfWriter::NumberType::uint8});
+    }
     for (const FieldFrame::RealField& f : frame.fields) {
       if (!selected(f.name)) continue;
       write_dataset(group, f.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, f.components,

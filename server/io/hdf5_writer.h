@@ -20,9 +20,9 @@ class Hdf5FieldWriter {
   static constexpr std::size_t kCompressAbove = 4096;
 
   // Creates (or truncates) `h5_path` and its sidecar, the same path with extension .xdmf.
-  // `fields_filter` lists the named fields to write (an empty list writes all of them);
-  // position, phase and id are always written. Throws std::runtime_error if the file cannot
-  // be created.
+  // `fields_filter` lists the named fields to write (an empty list writes all of them): the
+  // frame's RealFields and free_surface; position, phase and id are always written. Throws
+  // std::runtime_error if the file cannot be created.
   explicit Hdf5FieldWriter(const std::filesystem::path& h5_path,
                            std::vector<std::string> fields_filter = {});
   ~Hdf5FieldWriter();

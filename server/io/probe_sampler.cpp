@@ -5,7 +5,6 @@
 #include <limits>
 #include <stdexcept>
 
-
 namespace cascade {
 
 namespace {
@@ -27,6 +26,19 @@ void to_frame_coordinates(const v1::Probe& probe, int dimensions, double out[3])
   } else {
     for (int a = 0; a < 3 && a < probe.position_size(); ++a) out[a] = probe.position(a);
   }
+}
+
+// Component suffixes of vector (x, y, z) and symmetric tensor (Voigt order of FieldFrame) fields.
+int component_index(int components, const std::string& suffix) {
+  static const char* const kVector[3] = {"x", "y", "z"};
+  static const char* const kTensor[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
+  if (components == 3)
+    for (int c = 0; c < 3; ++c)
+      if (suffix == kVector[c]) return c;
+  if (components == 6)
+    for (int c = 0; c < 6; ++c)
+      if (suffix == kTensor[c]) return c;
+  return -1;
 }
 
 }  // namespace
@@ -84,20 +96,33 @@ double ProbeSampler::kernel(double r) const { return dimensions_ == 2 ? kernel2_
 
 std::vector<double> ProbeSampler::scalar_field(const FieldFrame& frame, const std::string& name) {
   const std::size_t n = frame.size();
-  std::vector<double> out(n);
-  if (name == "speed" || name.rfind("velocity_", 0) == 0) {
+  if (name == "free_surface") {
+    if (frame.free_surface.size() != n) throw std::invalid_argument("frame has no free_surface");
+    return std::vector<double>(frame.free_surface.begin(), frame.free_surface.end());
+  }
+  if (name == "speed") {
     const auto* v = frame.find("velocity");
-    if (!v) throw std::invalid_argument("frame has no velocity");
-    const int axis = name == "speed" ? -1 : (name == "velocity_x" ? 0 : name == "velocity_y" ? 1 : 2);
+    if (!v || v->components != 3) throw std::invalid_argument("frame has no velocity");
+    std::vector<double> out(n);
     for (std::size_t i = 0; i < n; ++i) {
       const double* u = &v->values[3 * i];
-      out[i] = axis < 0 ? std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) : u[axis];
+      out[i] = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
     }
     return out;
   }
-  const auto* f = frame.find(name);
-  if (!f || f->components != 1) throw std::invalid_argument("no scalar field '" + name + "' in the frame");
-  return f->values;
+  if (const auto* f = frame.find(name); f && f->components == 1) return f->values;
+  // FIELD_COMPONENT: velocity_z, seepage_x, stress_zz, effective_stress_xy, ...
+  const std::size_t split = name.rfind('_');
+  if (split != std::string::npos) {
+    const auto* f = frame.find(name.substr(0, split));
+    const int c = f ? component_index(f->components, name.substr(split + 1)) : -1;
+    if (c >= 0) {
+      std::vector<double> out(n);
+      for (std::size_t i = 0; i < n; ++i) out[i] = f->values[f->components * i + c];
+      return out;
+    }
+  }
+  throw std::invalid_argument("no scalar field '" + name + "' in the frame");
 }
 
 double ProbeSampler::point(const v1::Probe& probe, const FieldFrame& frame) const {

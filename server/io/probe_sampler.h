@@ -6,6 +6,7 @@
 //             Σ V_j W(x − x_j) first drops below 1/2 (the wave-gauge rule of DualSPHysics)
 //  front      the largest (or smallest) coordinate of a phase along an axis, minus `origin`
 //  max, mean  of a field over a phase
+// Fields are named as scalar_field() describes.
 // A probe with nothing to measure (no particle of its phase near it) gives NaN. Particles that
 // have left the domain are ignored.
 #pragma once
@@ -26,7 +27,12 @@ class ProbeSampler {
   std::vector<std::string> names() const;
   std::vector<double> sample(const FieldFrame& frame) const;
 
-  // One scalar per particle for a probe field name (pressure, density, speed, velocity_x/y/z).
+  // One scalar per particle for a probe field name: a one-component field of the frame by its
+  // name (pressure, density, pore_pressure, saturation, porosity, plastic_strain, ...),
+  // free_surface (0 or 1), speed (|velocity|), or a component of a vector field (velocity_x,
+  // seepage_z, displacement_y: suffixes x, y, z, frame axes, so _z is vertical in 2D too) or of a
+  // symmetric tensor field (stress_zz, effective_stress_xy: suffixes xx, yy, zz, xy, yz, zx).
+  // Throws std::invalid_argument when the frame has no such field.
   static std::vector<double> scalar_field(const FieldFrame& frame, const std::string& name);
 
  private:

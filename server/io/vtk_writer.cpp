@@ -23,8 +23,9 @@
 namespace cascade {
 namespace {
 
-// Component names ParaView shows for 6-component (Voigt) tensors, in FieldFrame's order.
-constexpr const char* kVoigtComponents[6] = {"xx", "yy", "zz", "yz", "xz", "xy"};
+// Component names of 6-component (symmetric tensor) arrays, in FieldFrame's Voigt order: the
+// order ParaView assumes for a 6-component tensor (XX, YY, ZZ, XY, YZ, XZ).
+constexpr const char* kVoigtComponents[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
 
 template <typename Array, typename Value>
 void fill(Array* array, const char* name, int components, const std::vector<Value>& values) {
@@ -39,6 +40,9 @@ void check_sizes(const FieldFrame& frame) {
   if (frame.position.size() != 3 * n || frame.phase.size() != n)
     throw std::invalid_argument("position or phase size does not match " + std::to_string(n) +
                                 " particles");
+  if (!frame.free_surface.empty() && frame.free_surface.size() != n)
+    throw std::invalid_argument("free_surface has " + std::to_string(frame.free_surface.size()) +
+                                " values, expected " + std::to_string(n) + " or none");
   for (const FieldFrame::RealField& f : frame.fields)
     if (f.components < 1 || f.values.size() != n * static_cast<std::size_t>(f.components))
       throw std::invalid_argument("field '" + f.name + "' has " + std::to_string(f.values.size()) +
@@ -79,6 +83,11 @@ std::filesystem::path VtkSeriesWriter::write(const FieldFrame& frame) {
   vtkNew<vtkUnsignedIntArray> id;
   fill(id.GetPointer(), "id", 1, frame.id);
   point_data->AddArray(id);
+  if (!frame.free_surface.empty()) {
+    vtkNew<vtkUnsignedCharArray> free_surface;
+    fill(free_surface.GetPointer(), "free_surface", 1, frame.free_surface);
+    point_data->AddArray(free_surface);
+  }
   for (const FieldFrame::RealField& f : frame.fields) {
     vtkNew<vtkDoubleArray> array;
     fill(array.GetPointer(), f.name.c_str(), f.components, f.values);

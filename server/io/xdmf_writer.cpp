@@ -32,14 +32,18 @@ int precision_bytes(XdmfWriter::NumberType type) {
   return 8;
 }
 
+// Six-component fields (symmetric tensors in FieldFrame's Voigt order xx, yy, zz, xy, yz, zx) are
+// "Matrix", not "Tensor6": XDMF's Tensor6 means the order xx, xy, xz, yy, yz, zz, and ParaView's
+// legacy XDMF Reader expands a Tensor6 to 3 x 3 in that order, which would silently scramble ours
+// (it reads any Matrix as one component, an array it flags as too long: wrong, but visibly so).
+// The Xdmf3 readers pass either type through as a 6-component array unchanged, and ParaView reads
+// a 6-component array as a symmetric tensor XX, YY, ZZ, XY, YZ, XZ: our order (docs/output.md).
 const char* attribute_type(int components) {
   switch (components) {
     case 1:
       return "Scalar";
     case 3:
       return "Vector";
-    case 6:
-      return "Tensor6";
     case 9:
       return "Tensor";
     default:

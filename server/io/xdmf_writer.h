@@ -18,7 +18,7 @@ class XdmfWriter {
   struct Attribute {
     std::string name;
     std::string dataset;  // absolute path inside the HDF5 file
-    int components = 1;   // 1 Scalar, 3 Vector, 6 Tensor6, 9 Tensor, others Matrix
+    int components = 1;   // 1 Scalar, 3 Vector, 9 Tensor, others (6 included) Matrix
     NumberType type = NumberType::float64;
   };
 

@@ -28,6 +28,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <random>
 #include <set>
 #include <sstream>
@@ -89,6 +90,38 @@ FieldFrame make_frame(std::size_t n, int dimensions, double time, std::uint64_t 
     pressure[1] = -0.0;
     pressure[2] = std::numeric_limits<double>::denorm_min();
   }
+  return frame;
+}
+
+// A frame of a case with soil: the water fields of make_frame and every soil field the engine
+// writes (docs/output.md), with free_surface set for some soil particles.
+FieldFrame make_soil_frame(std::size_t n, int dimensions, double time, std::uint64_t step,
+                           unsigned seed) {
+  FieldFrame frame = make_frame(n, dimensions, time, step, false, seed);
+  std::mt19937_64 random(seed + 1000);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const struct {
+    const char* name;
+    const char* units;
+    int components;
+    double scale;
+  } soil_fields[] = {{"numerical_density", "kg/m^3", 1, 2e3},
+                     {"pore_pressure", "Pa", 1, -5e4},
+                     {"saturation", "1", 1, 1.0},
+                     {"porosity", "1", 1, 0.5},
+                     {"plastic_strain", "1", 1, 1e-2},
+                     {"seepage", "m/s", 3, 1e-5},
+                     {"displacement", "m", 3, 0.1},
+                     {"stress", "Pa", 6, -1e5},
+                     {"effective_stress", "Pa", 6, -8e4}};
+  for (const auto& s : soil_fields) {
+    FieldFrame::RealField f{s.name, s.units, s.components, {}};
+    for (std::size_t k = 0; k < n * s.components; ++k) f.values.push_back(s.scale * uniform(random));
+    frame.fields.push_back(f);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    frame.free_surface.push_back(frame.phase[i] == 1 && uniform(random) < 0.5 ? 1 : 0);
+  if (n >= 3) frame.free_surface[1] = 1;  // phase[1] is soil: at least one particle on the surface
   return frame;
 }
 
@@ -230,6 +263,16 @@ void expect_frame_in_file(hid_t file, std::size_t index, const FieldFrame& frame
   EXPECT_TRUE(dataset_has_type(file, id, H5T_STD_U32LE));
   EXPECT_TRUE(same_bits(read_dataset<std::uint32_t>(file, id, H5T_NATIVE_UINT32), frame.id));
 
+  if (written_fields.count("free_surface")) {
+    const std::string free_surface = group_path + "/free_surface";
+    ASSERT_TRUE(h5_exists(file, free_surface));
+    EXPECT_EQ(dataset_dims(file, free_surface), (std::vector<hsize_t>{n}));
+    EXPECT_TRUE(dataset_has_type(file, free_surface, H5T_STD_U8LE));
+    EXPECT_TRUE(same_bits(read_dataset<std::uint8_t>(file, free_surface, H5T_NATIVE_UINT8),
+                          frame.free_surface));
+    EXPECT_EQ(read_string_attribute(file, free_surface, "units"), "1");
+  }
+
   for (const FieldFrame::RealField& f : frame.fields) {
     if (!written_fields.count(f.name)) continue;
     const std::string path = group_path + "/" + f.name;
@@ -245,9 +288,11 @@ void expect_frame_in_file(hid_t file, std::size_t index, const FieldFrame& frame
   }
 }
 
+// The named datasets a frame gives with no fields filter: its RealFields and free_surface.
 std::set<std::string> field_names(const FieldFrame& frame) {
   std::set<std::string> names;
   for (const auto& f : frame.fields) names.insert(f.name);
+  if (!frame.free_surface.empty()) names.insert("free_surface");
   return names;
 }
 
@@ -288,6 +333,43 @@ TEST(Hdf5FieldWriter, TwoDimensionalFramesKeepThreePositionComponents) {
   for (std::size_t i = 0; i < frame.size(); ++i) EXPECT_EQ(position[3 * i + 1], 0.0);
 }
 
+TEST(Hdf5FieldWriter, SoilFieldsReadBackBitExact) {
+  const fs::path dir = fresh_directory();
+  const std::vector<FieldFrame> frames = {make_soil_frame(31, 2, 0.0, 0, 21),
+                                          make_soil_frame(29, 2, 0.5, 400, 22)};
+  {
+    Hdf5FieldWriter writer(dir / "fields.h5");
+    for (const FieldFrame& frame : frames) writer.write(frame);
+  }
+  H5File file(dir / "fields.h5");
+  ASSERT_TRUE(file.valid());
+  EXPECT_EQ(read_attribute<int>(file, "dimensions", H5T_NATIVE_INT), 2);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const std::set<std::string> names = field_names(frames[i]);
+    for (const char* soil : {"pore_pressure", "saturation", "porosity", "plastic_strain", "seepage",
+                             "displacement", "stress", "effective_stress", "free_surface"})
+      EXPECT_TRUE(names.count(soil)) << soil;  // the helper makes every field of the layout
+    expect_frame_in_file(file, i, frames[i], names);
+  }
+  // Spot checks of the layout itself, independent of the helper above.
+  EXPECT_EQ(dataset_dims(file, "/frames/000001/effective_stress"), (std::vector<hsize_t>{29, 6}));
+  EXPECT_EQ(dataset_dims(file, "/frames/000001/seepage"), (std::vector<hsize_t>{29, 3}));
+  EXPECT_EQ(dataset_dims(file, "/frames/000001/pore_pressure"), (std::vector<hsize_t>{29}));
+  EXPECT_EQ(read_string_attribute(file, "/frames/000000/stress", "units"), "Pa");
+  EXPECT_EQ(read_string_attribute(file, "/frames/000000/seepage", "units"), "m/s");
+}
+
+TEST(Hdf5FieldWriter, WaterOnlyFramesHaveNoFreeSurface) {
+  const fs::path dir = fresh_directory();
+  const FieldFrame frame = make_frame(8, 2, 0.0, 0, false, 23);
+  ASSERT_TRUE(frame.free_surface.empty());
+  Hdf5FieldWriter(dir / "fields.h5").write(frame);
+  H5File file(dir / "fields.h5");
+  ASSERT_TRUE(file.valid());
+  EXPECT_FALSE(h5_exists(file, "/frames/000000/free_surface"));
+  expect_frame_in_file(file, 0, frame, {"velocity", "pressure", "density"});
+}
+
 bool is_chunked_with_deflate(hid_t file, const std::string& path) {
   H5Handle dataset(H5Dopen2(file, path.c_str(), H5P_DEFAULT), H5Dclose);
   H5Handle properties(H5Dget_create_plist(dataset), H5Pclose);
@@ -306,7 +388,7 @@ bool is_chunked_with_deflate(hid_t file, const std::string& path) {
 TEST(Hdf5FieldWriter, LargeFramesAreChunkedAndCompressed) {
   const fs::path dir = fresh_directory();
   const FieldFrame small = make_frame(100, 3, 0.0, 0, false, 5);
-  const FieldFrame large = make_frame(Hdf5FieldWriter::kCompressAbove + 904, 3, 1.0, 1, true, 6);
+  const FieldFrame large = make_soil_frame(Hdf5FieldWriter::kCompressAbove + 904, 3, 1.0, 1, 6);
   {
     Hdf5FieldWriter writer(dir / "fields.h5");
     writer.write(small);
@@ -314,7 +396,7 @@ TEST(Hdf5FieldWriter, LargeFramesAreChunkedAndCompressed) {
   }
   H5File file(dir / "fields.h5");
   ASSERT_TRUE(file.valid());
-  for (const char* name : {"position", "pressure", "stress", "phase", "id"})
+  for (const char* name : {"position", "pressure", "stress", "phase", "id", "free_surface"})
     EXPECT_TRUE(is_chunked_with_deflate(file, std::string("/frames/000001/") + name)) << name;
   EXPECT_FALSE(is_chunked_with_deflate(file, "/frames/000000/position"));
   expect_frame_in_file(file, 0, small, field_names(small));
@@ -328,6 +410,18 @@ TEST(Hdf5FieldWriter, FieldsFilterKeepsOnlyNamedFields) {
   H5File file(dir / "fields.h5");
   ASSERT_TRUE(file.valid());
   expect_frame_in_file(file, 0, frame, {"pressure", "stress"});
+}
+
+TEST(Hdf5FieldWriter, FieldsFilterAppliesToFreeSurface) {
+  const fs::path dir = fresh_directory();
+  const FieldFrame frame = make_soil_frame(10, 3, 0.0, 0, 24);
+  Hdf5FieldWriter(dir / "with.h5", {"pore_pressure", "free_surface"}).write(frame);
+  Hdf5FieldWriter(dir / "without.h5", {"pore_pressure", "effective_stress"}).write(frame);
+  H5File with(dir / "with.h5"), without(dir / "without.h5");
+  ASSERT_TRUE(with.valid());
+  ASSERT_TRUE(without.valid());
+  expect_frame_in_file(with, 0, frame, {"pore_pressure", "free_surface"});
+  expect_frame_in_file(without, 0, frame, {"pore_pressure", "effective_stress"});
 }
 
 TEST(Hdf5FieldWriter, FlushedFramesReadableBeforeClose) {
@@ -361,6 +455,12 @@ TEST(Hdf5FieldWriter, RejectsInconsistentFramesAndWritesAfterClose) {
   FieldFrame twice = make_frame(5, 3, 0.0, 0, false, 11);
   twice.fields[2].name = "pressure";
   EXPECT_THROW(writer.write(twice), std::invalid_argument);
+  FieldFrame surface_clash = make_frame(5, 3, 0.0, 0, false, 11);
+  surface_clash.fields[1].name = "free_surface";
+  EXPECT_THROW(writer.write(surface_clash), std::invalid_argument);
+  FieldFrame short_surface = make_soil_frame(5, 3, 0.0, 0, 11);
+  short_surface.free_surface.pop_back();
+  EXPECT_THROW(writer.write(short_surface), std::invalid_argument);
   EXPECT_EQ(writer.frames_written(), 0u);
 
   writer.write(make_frame(5, 3, 0.0, 0, false, 12));
@@ -431,11 +531,17 @@ std::string expect_data_item_matches(hid_t file, vtkXMLDataElement* item) {
   return path;
 }
 
-TEST(XdmfSidecar, ReferencesMatchHdf5Datasets) {
-  const fs::path dir = fresh_directory();
-  const std::vector<FieldFrame> frames = {make_frame(9, 3, 0.0, 0, true, 15),
-                                          make_frame(9, 3, 0.1, 7, true, 16),
-                                          make_frame(14, 3, 1.0 / 7.0, 9, true, 17)};
+// The AttributeType each dataset of a frame must have in fields.xdmf (docs/output.md).
+std::string expected_attribute_type(const FieldFrame& frame, const std::string& name) {
+  const FieldFrame::RealField* f = frame.find(name);
+  if (!f || f->components == 1) return "Scalar";  // also phase, id, free_surface
+  if (f->components == 3) return "Vector";
+  if (f->components == 9) return "Tensor";
+  return "Matrix";  // six-component tensors too: XDMF's Tensor6 has another component order
+}
+
+// Writes the frames and checks fields.xdmf against them and against the fields.h5 it names.
+void check_xdmf_sidecar(const fs::path& dir, const std::vector<FieldFrame>& frames) {
   {
     Hdf5FieldWriter writer(dir / "fields.h5");
     EXPECT_EQ(writer.xdmf_path(), dir / "fields.xdmf");
@@ -490,20 +596,65 @@ TEST(XdmfSidecar, ReferencesMatchHdf5Datasets) {
       const std::string name = attribute(a, "Name");
       names.insert(name);
       EXPECT_EQ(attribute(a, "Center"), "Node");
-      const std::string type = attribute(a, "AttributeType");
-      const char* expected = name == "velocity" ? "Vector"
-                             : name == "stress" ? "Tensor6"
-                                                : "Scalar";
-      EXPECT_EQ(type, expected) << name;
+      EXPECT_EQ(attribute(a, "AttributeType"), expected_attribute_type(frame, name)) << name;
       ASSERT_EQ(children(a, "DataItem").size(), 1u);
       const std::string path = expect_data_item_matches(file, children(a, "DataItem")[0]);
       char group[32];
       std::snprintf(group, sizeof group, "/frames/%06zu/", g);
       EXPECT_EQ(path, group + name);
     }
-    EXPECT_EQ(names,
-              (std::set<std::string>{"phase", "id", "velocity", "pressure", "density", "stress"}));
+    std::set<std::string> expected_names = field_names(frame);
+    expected_names.insert({"phase", "id"});
+    EXPECT_EQ(names, expected_names);
   }
+}
+
+TEST(XdmfSidecar, ReferencesMatchHdf5Datasets) {
+  const std::vector<FieldFrame> frames = {make_frame(9, 3, 0.0, 0, true, 15),
+                                          make_frame(9, 3, 0.1, 7, true, 16),
+                                          make_frame(14, 3, 1.0 / 7.0, 9, true, 17)};
+  check_xdmf_sidecar(fresh_directory(), frames);
+}
+
+TEST(XdmfSidecar, SoilTensorsAreSixComponentMatricesAndFreeSurfaceUChar) {
+  const fs::path dir = fresh_directory();
+  const std::vector<FieldFrame> frames = {make_soil_frame(12, 2, 0.0, 0, 25),
+                                          make_soil_frame(10, 2, 0.25, 50, 26)};
+  check_xdmf_sidecar(dir, frames);
+
+  // The same, spelled out for the last frame (10 particles).
+  const XmlElement root = read_xml(dir / "fields.xdmf");
+  ASSERT_TRUE(root);
+  const auto grids = children(children(children(root, "Domain").at(0), "Grid").at(0), "Grid");
+  ASSERT_EQ(grids.size(), 2u);
+  struct Expected {
+    const char* type;
+    const char* dimensions;
+    const char* number_type;
+    const char* precision;
+  };
+  const std::map<std::string, Expected> expected = {
+      {"stress", {"Matrix", "10 6", "Float", "8"}},
+      {"effective_stress", {"Matrix", "10 6", "Float", "8"}},
+      {"seepage", {"Vector", "10 3", "Float", "8"}},
+      {"displacement", {"Vector", "10 3", "Float", "8"}},
+      {"pore_pressure", {"Scalar", "10", "Float", "8"}},
+      {"plastic_strain", {"Scalar", "10", "Float", "8"}},
+      {"free_surface", {"Scalar", "10", "UChar", "1"}}};
+  std::size_t found = 0;
+  for (vtkXMLDataElement* a : children(grids[1], "Attribute")) {
+    const auto e = expected.find(attribute(a, "Name"));
+    if (e == expected.end()) continue;
+    ++found;
+    SCOPED_TRACE(e->first);
+    EXPECT_EQ(attribute(a, "AttributeType"), e->second.type);
+    vtkXMLDataElement* item = children(a, "DataItem").at(0);
+    EXPECT_EQ(attribute(item, "Dimensions"), e->second.dimensions);
+    EXPECT_EQ(attribute(item, "NumberType"), e->second.number_type);
+    EXPECT_EQ(attribute(item, "Precision"), e->second.precision);
+    EXPECT_EQ(trimmed(item->GetCharacterData()), "fields.h5:/frames/000001/" + e->first);
+  }
+  EXPECT_EQ(found, expected.size());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -536,7 +687,18 @@ void expect_vtp_matches(const fs::path& path, const FieldFrame& frame) {
   ASSERT_NE(id, nullptr);
   EXPECT_TRUE(same_bits(
       std::vector<std::uint32_t>(id->GetPointer(0), id->GetPointer(0) + frame.size()), frame.id));
-  EXPECT_EQ(data->GetNumberOfArrays(), static_cast<int>(2 + frame.fields.size()));
+  if (frame.free_surface.empty()) {
+    EXPECT_EQ(data->GetAbstractArray("free_surface"), nullptr);
+  } else {
+    auto* free_surface = vtkUnsignedCharArray::SafeDownCast(data->GetAbstractArray("free_surface"));
+    ASSERT_NE(free_surface, nullptr);
+    EXPECT_EQ(free_surface->GetNumberOfComponents(), 1);
+    EXPECT_TRUE(same_bits(std::vector<std::uint8_t>(free_surface->GetPointer(0),
+                                                    free_surface->GetPointer(0) + frame.size()),
+                          frame.free_surface));
+  }
+  EXPECT_EQ(data->GetNumberOfArrays(),
+            static_cast<int>(2 + frame.fields.size() + !frame.free_surface.empty()));
   for (const FieldFrame::RealField& f : frame.fields) {
     auto* array = vtkDoubleArray::SafeDownCast(data->GetAbstractArray(f.name.c_str()));
     ASSERT_NE(array, nullptr) << f.name;
@@ -546,7 +708,11 @@ void expect_vtp_matches(const fs::path& path, const FieldFrame& frame) {
                   f.values))
         << f.name;
     if (f.components == 6) {
-      EXPECT_STREQ(array->GetComponentName(3), "yz");
+      const char* const voigt[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};  // FieldFrame's order
+      for (int c = 0; c < 6; ++c) {
+        ASSERT_NE(array->GetComponentName(c), nullptr) << f.name << " " << c;
+        EXPECT_STREQ(array->GetComponentName(c), voigt[c]) << f.name;
+      }
     }
   }
   auto* time =
@@ -558,7 +724,8 @@ void expect_vtp_matches(const fs::path& path, const FieldFrame& frame) {
 void check_vtk_series(const fs::path& dir, VtkWriterOptions options) {
   const std::vector<FieldFrame> frames = {make_frame(11, 3, 0.0, 0, true, 18),
                                           make_frame(11, 3, 0.25, 3, true, 19),
-                                          make_frame(6, 2, 1.0 / 3.0, 4, false, 20)};
+                                          make_frame(6, 2, 1.0 / 3.0, 4, false, 20),
+                                          make_soil_frame(13, 2, 0.5, 8, 27)};
   VtkSeriesWriter writer(dir / "vtk", options);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const fs::path written = writer.write(frames[i]);
@@ -589,6 +756,14 @@ TEST(VtkSeriesWriter, FramesReadBackWithXmlReader) { check_vtk_series(fresh_dire
 
 TEST(VtkSeriesWriter, CompressedFramesReadBack) {
   check_vtk_series(fresh_directory(), VtkWriterOptions{true});
+}
+
+TEST(VtkSeriesWriter, RejectsFreeSurfaceOfWrongSize) {
+  VtkSeriesWriter writer(fresh_directory() / "vtk");
+  FieldFrame frame = make_soil_frame(7, 2, 0.0, 0, 28);
+  frame.free_surface.push_back(0);
+  EXPECT_THROW(writer.write(frame), std::invalid_argument);
+  EXPECT_EQ(writer.frames_written(), 0u);
 }
 
 // ---------------------------------------------------------------------------------------------
