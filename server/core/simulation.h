@@ -3,7 +3,6 @@
 #pragma once
 
 #include <thrust/copy.h>
-#include <thrust/fill.h>
 #include <thrust/for_each.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/reduce.h>
@@ -69,10 +68,12 @@ class Simulation final : public Engine {
     density_ = std::vector<Real>(n, Real(config.water_density));  // one initial numerical density (Section 3.2)
     phase_ = host.phase;
     id_ = id;
+    // Zeros, not Eigen's uninitialised default: a deforming soil's seepage reads the acceleration
+    // of the previous evaluation (Eq. 27b), which at the first one is the state at rest.
     for (auto* v : {&pressure_, &density_rate_, &water_density_rate_, &step_limit_, &start_density_, &start_water_density_})
-      v->resize(n);
+      v->assign(n, Real(0));
     for (auto* v : {&acceleration_, &water_density_gradient_, &start_position_, &start_velocity_, &listed_position_})
-      v->resize(n);
+      v->assign(n, V::Zero());
     scratch_vec_.resize(n);
     ghost_wet_.resize(n);
     scratch_real_.resize(n);
@@ -368,23 +369,20 @@ class Simulation final : public Engine {
     soil_material_ = material;
     porosity_ = porosity;
     effective_stress_ = stress;
-    total_stress_.resize(n);
-    boundary_velocity_.resize(n);
-    velocity_gradient_.resize(n);
-    porosity_rate_.resize(n);
-    plastic_strain_.resize(n);
-    thrust::fill(plastic_strain_.begin(), plastic_strain_.end(), Real(0));
-    start_stress_.resize(n);
-    start_plastic_strain_.resize(n);
-    start_porosity_.resize(n);
-    saturation_.resize(n);
-    seepage_.resize(n);
-    pore_pressure_.resize(n);
-    pressure_gradient_.resize(n);
-    free_surface_.resize(n);
-    surface_state_.resize(n);
-    thrust::fill(surface_state_.begin(), surface_state_.end(), std::uint8_t(SurfaceState::flux));
-    thrust::fill(seepage_.begin(), seepage_.end(), V::Zero());
+    total_stress_.assign(n, Voigt<Real>::Zero());
+    boundary_velocity_.assign(n, V::Zero());
+    velocity_gradient_.assign(n, Mat<Real, Dim>::Zero());
+    porosity_rate_.assign(n, Real(0));
+    plastic_strain_.assign(n, Real(0));
+    start_stress_.assign(n, Voigt<Real>::Zero());
+    start_plastic_strain_.assign(n, Real(0));
+    start_porosity_.assign(n, Real(0));
+    saturation_.assign(n, Real(0));
+    seepage_.assign(n, V::Zero());
+    pore_pressure_.assign(n, Real(0));
+    pressure_gradient_.assign(n, V::Zero());
+    free_surface_.assign(n, 0);
+    surface_state_.assign(n, std::uint8_t(SurfaceState::flux));
   }
 
   double next_time_step() {

@@ -1,12 +1,13 @@
 // Pore-water continuity of a soil particle (Eq. 27a with ERRATA.md) and its seepage time-step
 // limit (Eqs. 40c, 41):
-//   dρ_w,i/dt = −(1/C_r,i) [ ρ_w,i ( Σ_j V_j (q_w,j − q_w,i)·∇_i W_ij + S_w,i ε̇_v,i )
+//   dρ_w,i/dt = −(1/C_r,i) [ ρ_w,i ( ⟨∇·q_w⟩_i + S_w,i ε̇_v,i )
 //                            − δ h c_pw0 Σ_{j soil} V_j ψ_ij·∇_i W_ij ],
 //   C_r = φ (S_w − K_w ∂S_w/∂p_c) (Eq. 28b), ψ_ij of Eq. 24b on the pore-water densities.
 // The δ-term carries the opposite sign to the printed Eq. 27a, whose form inside −1/C_r [...]
 // would be anti-diffusive (ERRATA.md): with it, a local pore-pressure bump decays. Neighbours of
 // the divergence are the soil and the dummy particles (whose q_w = −q_g closes the wall,
-// Eq. 35b); free water does not exchange mass with the pore water (ERRATA.md).
+// Eq. 35b); free water does not exchange mass with the pore water (ERRATA.md). ⟨∇·q_w⟩_i is the
+// renormalised form of Σ_j V_j (q_w,j − q_w,i)·∇_i W_ij (soil_interaction.h).
 //   Δt_sp = (γ_w/K_w) h² C_r / (2 K) (Eq. 40c with c_v = C_r, Eq. 41), γ_w = ρ_w0 g.
 #pragma once
 
