@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "clients/cli/progress.h"
 #include "server/core/engine.h"
@@ -25,6 +26,7 @@
 #include "server/scenario/case_loader.h"
 #include "server/scenario/engine_setup.h"
 #include "server/scenario/particle_builder.h"
+#include "server/scenario/soil_setup.h"
 
 namespace cascade::cli {
 
@@ -139,6 +141,27 @@ class Outputs {
   std::unique_ptr<ProbeCsvWriter> probes_;
 };
 
+std::string format_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
+// The case's rain at the engine's time (a time series changes it at step boundaries): hands a
+// changed intensity to the engine and records the change in run.json.
+void apply_forcing(const v1::ScenarioSpec& spec, Engine& engine, RunSummary& summary) {
+  if (spec.hydraulics().rainfall().empty()) return;  // constant: set once, by engine_config
+  const HydraulicForcing now = hydraulic_forcing(spec, engine.time());
+  const HydraulicForcing current = engine.forcing();
+  if (now.rainfall_intensity == current.rainfall_intensity) return;
+  HydraulicForcing next = current;  // keeps whatever else the engine holds
+  next.rainfall_intensity = now.rainfall_intensity;
+  engine.set_forcing(next);
+  summary.events.push_back({engine.time(), engine.step_count(), "forcing",
+                            "rainfall_intensity " + format_number(current.rainfall_intensity) + " -> " +
+                                format_number(now.rainfall_intensity) + " m/s"});
+}
+
 }  // namespace
 
 int run_command(const std::vector<std::string>& args) {
@@ -183,10 +206,11 @@ int run_command(const std::vector<std::string>& args) {
     engine = make_engine(config, particles);
     Outputs outputs(spec, options.out_dir, config.h, config.water_density * std::pow(config.dp, config.dimensions));
     std::fprintf(stderr,
-                 "cascade run: %s, %zu particles (%zu water, %zu boundary), dp = %g m, h = %g m, c0 = %.3f m/s, "
-                 "%s on %s with %d threads, until t = %g s\n",
+                 "cascade run: %s, %zu particles (%zu water, %zu soil, %zu boundary), dp = %g m, h = %g m, "
+                 "c0 = %.3f m/s, %s on %s with %d threads, until t = %g s\n",
                  spec.name().c_str(), particles.size(), std::size_t(summary.particles.water),
-                 std::size_t(summary.particles.boundary), config.dp, config.h, config.sound_speed,
+                 std::size_t(summary.particles.soil), std::size_t(summary.particles.boundary), config.dp, config.h,
+                 config.sound_speed,
                  summary.precision.c_str(), engine->device_name(), omp_get_max_threads(), end_time);
     Progress progress(end_time, stderr);
     outputs.observe(*engine, true);
@@ -197,6 +221,7 @@ int run_command(const std::vector<std::string>& args) {
         throw SimulationFailure("interrupted by signal " + std::to_string(g_signal.load()) + " at t = " +
                                 std::to_string(engine->time()) + " s; outputs hold the run up to there");
       }
+      apply_forcing(spec, *engine, summary);
       engine->step();
       outputs.observe(*engine, false);
       progress.update(engine->time(), engine->step_count(), engine->last_dt());

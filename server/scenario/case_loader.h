@@ -42,8 +42,10 @@ void validate_spec(const cascade::v1::ScenarioSpec& spec);
 
 // Replaces the "0 / unset means <default>" fields that have a fixed default with that default:
 // h_over_dp 1.3, numerics.cfl 0.2, numerics.min_dt 1e-12, output.interval end_time / 100,
-// output.hdf5 true, water density 1000, δ 0.1, α_μ,w 0.01, probe phase "water". Defaults that
-// need the geometry (sound speed, max speed, max pressure, boundary layers) stay 0 for the solver.
+// output.hdf5 true, water density 1000, δ 0.1, α_μ,w 0.01, probe phase "water"; for soils K_w 2e6,
+// c_pw0 10 K_sat, δ 0.1, α_μ,s 0.1, s_max 1, residual cohesion and friction angle = the peak ones,
+// p_atm 101e3. Defaults that need the geometry or another section (sound speed, max speed, max
+// pressure, boundary layers, K0) stay 0 for the solver.
 void apply_defaults(cascade::v1::ScenarioSpec& spec);
 
 }  // namespace cascade

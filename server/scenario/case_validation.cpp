@@ -1,12 +1,15 @@
 #include "server/scenario/case_validation.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
 
 #include "server/scenario/case_error.h"
 #include "server/scenario/case_loader.h"
+#include "server/scenario/soil_setup.h"
 
 namespace cascade {
 
@@ -16,7 +19,18 @@ using google::protobuf::RepeatedField;
 using google::protobuf::RepeatedPtrField;
 namespace pb = cascade::v1;
 
-const std::set<std::string> kProbeFields = {"pressure", "density", "speed", "velocity_x", "velocity_y", "velocity_z"};
+// Fields of every phase, and fields of soil particles only (probe phase soil).
+const std::set<std::string> kProbeFields = {
+    "pressure",       "density",        "speed",          "velocity_x",     "velocity_y",     "velocity_z",
+    "displacement_x", "displacement_y", "displacement_z", "stress_xx",      "stress_yy",      "stress_zz",
+    "stress_xy",      "stress_yz",      "stress_zx"};
+const std::set<std::string> kSoilProbeFields = {
+    "pore_pressure",         "saturation",            "porosity",              "plastic_strain",
+    "seepage_x",             "seepage_y",             "seepage_z",             "effective_stress_xx",
+    "effective_stress_yy",   "effective_stress_zz",   "effective_stress_xy",   "effective_stress_yz",
+    "effective_stress_zx",   "free_surface"};
+// Vector components that a 2D (x, z) case does not have.
+const std::set<std::string> kThreeDimensionalOnly = {"velocity_y", "displacement_y", "seepage_y"};
 const std::set<std::string> kPhases = {"water", "soil", "boundary"};
 
 std::string indexed(const std::string& key, int i) { return key + "[" + std::to_string(i) + "]"; }
@@ -42,6 +56,7 @@ class SpecChecker {
     check_numerics();
     check_output();
     check_probes();
+    check_hydraulics();
   }
 
  private:
@@ -106,7 +121,9 @@ class SpecChecker {
   }
 
   void check_materials() {
+    if (spec_.materials().empty()) error("materials", "is missing: a case needs a water or a soil material");
     std::map<std::string, int> seen;
+    int water = -1, soils = 0;
     for (int i = 0; i < spec_.materials_size(); ++i) {
       const pb::Material& m = spec_.materials(i);
       const std::string key = indexed("materials", i);
@@ -115,12 +132,23 @@ class SpecChecker {
         error(key + ".name", "'" + m.name() + "' is already the name of " + indexed("materials", it->second));
       switch (m.model_case()) {
         case pb::Material::kWater:
+          // The engine holds one set of water constants (ρ_w0, c_w0, δ, α): a second water
+          // material would start in a state its equation of state does not balance.
+          if (water >= 0)
+            error(key, "a case has one water material; '" + spec_.materials(water).name() + "' is already one");
+          water = i;
           check_water(key + ".water", m.water());
           break;
+        case pb::Material::kSoil:
+          // HostParticles::soil_material is one byte.
+          if (++soils > 255) error(key, "a case has at most 255 soil materials");
+          break;
         case pb::Material::MODEL_NOT_SET:
-          error(key, "has no model: give one of: water");
+          error(key, "has no model: give one of: water, soil");
       }
     }
+    // After the water material: a soil's hydraulic model takes γ_w = ρ_w0 |g| from it.
+    for (int m : soil_material_indices(spec_)) soil_material(spec_, m, fail_);
   }
 
   void check_water(const std::string& key, const pb::WaterModel& w) const {
@@ -135,10 +163,10 @@ class SpecChecker {
     if (w.has_viscosity_alpha()) non_negative(key + ".viscosity_alpha", w.viscosity_alpha());
   }
 
-  bool material_defined(const std::string& name) const {
+  const pb::Material* material_named(const std::string& name) const {
     for (const pb::Material& m : spec_.materials())
-      if (m.name() == name) return true;
-    return false;
+      if (m.name() == name) return &m;
+    return nullptr;
   }
 
   std::string material_names() const {
@@ -161,17 +189,62 @@ class SpecChecker {
       has_fluid = has_fluid || b.kind() == pb::FLUID;
       if (b.kind() == pb::FLUID && b.material().empty())
         error(key + ".material", "is missing: a fluid body is made of a material");
-      if (!b.material().empty() && !material_defined(b.material()))
+      const pb::Material* material = b.material().empty() ? nullptr : material_named(b.material());
+      if (!b.material().empty() && material == nullptr)
         error(key + ".material", "'" + b.material() + "' is not a material (" + material_names() + ")");
       check_shape(key + ".shape", b.shape(), true);
       for (int j = 0; j < b.subtract_size(); ++j) check_shape(indexed(key + ".subtract", j), b.subtract(j), false);
       if (!b.initial().velocity().empty())
         check_vector(key + ".initial.velocity", b.initial().velocity(), dims_, "a velocity");
-      if (b.kind() == pb::BOUNDARY && (b.initial().hydrostatic() || !b.initial().velocity().empty()))
+      const pb::InitialState& initial = b.initial();
+      const bool soil_state = initial.pore_pressure_case() != pb::InitialState::PORE_PRESSURE_NOT_SET ||
+                              initial.k0() != 0;
+      if (b.kind() == pb::BOUNDARY && (initial.hydrostatic() || !initial.velocity().empty() || soil_state))
         error(key + ".initial", "a boundary body is a fixed solid and has no initial state");
+      if (b.kind() == pb::FLUID && material != nullptr) {
+        if (material->has_soil()) check_soil_initial(key + ".initial", initial, *material);
+        else if (soil_state)
+          error(key + ".initial." + soil_state_key(initial),
+                "is for soil bodies; '" + b.material() + "' is not a soil material");
+      }
       if (b.layers() < 0) error(key + ".layers", "must not be negative (0 means enough to cover 2h)");
     }
     if (!has_fluid) error("bodies", "has no fluid body: at least one body needs `kind: fluid`");
+  }
+
+  static std::string soil_state_key(const pb::InitialState& initial) {
+    switch (initial.pore_pressure_case()) {
+      case pb::InitialState::kSuction: return "suction";
+      case pb::InitialState::kWaterTable: return "water_table";
+      default: return "k0";
+    }
+  }
+
+  // The initial state of a soil body: pore pressure (p_w > −K_w everywhere: the water-table case
+  // is checked by the particle builder, which knows the body's extent) and K0.
+  void check_soil_initial(const std::string& key, const pb::InitialState& initial, const pb::Material& m) const {
+    for (int a = 0; a < dims_; ++a)
+      if ((a + 1 < dims_ && spec_.gravity(a) != 0) || (a + 1 == dims_ && spec_.gravity(a) > 0))
+        error("gravity", "must point along -z (or be zero) in a case with soil: the initial pore pressure and "
+                         "geostatic stress of " + key.substr(0, key.find(".initial")) + " are measured along z");
+    if (initial.hydrostatic())
+      error(key + ".hydrostatic",
+            "is for water bodies; a soil body starts from initial.water_table or initial.suction");
+    if (initial.has_suction()) {
+      finite(key + ".suction", initial.suction());
+      if (!(initial.suction() > 0))
+        error(key + ".suction", "must be greater than 0 (is " + number(initial.suction()) +
+                                    "); leave it out for zero pore pressure, or give water_table");
+      const double bulk = m.soil().water_bulk_modulus() > 0 ? m.soil().water_bulk_modulus() : kDefaultWaterBulkModulus;
+      if (!(initial.suction() < bulk))
+        error(key + ".suction", "must be below the pore water's bulk modulus K_w = " + number(bulk) +
+                                    " Pa: the pore-water density ρ_w0 (1 − suction / K_w) must stay positive");
+    }
+    if (initial.has_water_table()) finite(key + ".water_table", initial.water_table());
+    non_negative(key + ".k0", initial.k0(), "nu / (1 - nu) of the mechanical model, 1 for a rigid soil");
+    if (m.soil().rigid())
+      for (int a = 0; a < initial.velocity_size(); ++a)
+        if (initial.velocity(a) != 0) error(key + ".velocity", "a rigid soil does not move: leave the velocity out");
   }
 
   // `inside_domain`: the shape bounds a body, so its extent must lie in the domain (subtracted
@@ -297,8 +370,11 @@ class SpecChecker {
       }
       if (uses_field) {
         if (p.field().empty()) error(key + ".field", "is missing: give one of " + field_names());
-        if (!kProbeFields.count(p.field()) || (dims_ == 2 && p.field() == "velocity_y"))
+        const bool soil_field = kSoilProbeFields.count(p.field()) > 0;
+        if ((!kProbeFields.count(p.field()) && !soil_field) || (dims_ == 2 && kThreeDimensionalOnly.count(p.field())))
           error(key + ".field", "'" + p.field() + "' is not a field (" + field_names() + ")");
+        if (soil_field && p.phase() != "soil")
+          error(key + ".phase", "'" + p.field() + "' is a field of soil particles: give phase: soil");
       } else if (!p.field().empty()) {
         error(key + ".field", "is not used by this kind of probe");
       }
@@ -310,8 +386,53 @@ class SpecChecker {
 
   std::string axes() const { return dims_ == 2 ? "x, z" : "x, y, z"; }
   std::string field_names() const {
-    return dims_ == 2 ? "pressure, density, speed, velocity_x, velocity_z"
-                      : "pressure, density, speed, velocity_x, velocity_y, velocity_z";
+    const std::string y = dims_ == 2 ? "" : "/_y";
+    return "pressure, density, speed, velocity_x" + y + "/_z, displacement_x" + y +
+           "/_z, stress_xx/yy/zz/xy/yz/zx; of soil: pore_pressure, saturation, porosity, plastic_strain, "
+           "seepage_x" + y + "/_z, effective_stress_xx/yy/zz/xy/yz/zx, free_surface";
+  }
+
+  // The free-surface conditions (Eq. 39). The pore water at p_max and p_min must keep a positive
+  // density ρ_w0 (1 + p / K_w) in every soil.
+  void check_hydraulics() const {
+    if (!spec_.has_hydraulics()) return;
+    const pb::HydraulicBoundary& h = spec_.hydraulics();
+    const std::vector<int> soils = soil_material_indices(spec_);
+    if (soils.empty()) error("hydraulics", "acts on the free surface of soil, and the case has no soil material");
+    finite("hydraulics.rainfall_intensity", h.rainfall_intensity());
+    if (h.rainfall_size() > 0 && h.rainfall_intensity() != 0)
+      error("hydraulics.rainfall", "cannot be given together with rainfall_intensity: give a constant intensity or a "
+                                   "time series");
+    for (int i = 0; i < h.rainfall_size(); ++i) {
+      const std::string key = indexed("hydraulics.rainfall", i);
+      const pb::RainfallPoint& point = h.rainfall(i);
+      finite(key + ".time", point.time());
+      finite(key + ".intensity", point.intensity());
+      if (point.time() < 0) error(key + ".time", "must not be negative (is " + number(point.time()) + ")");
+      if (i > 0 && !(point.time() > h.rainfall(i - 1).time()))
+        error(key + ".time", "must be later than the time of the point before (" + number(point.time()) +
+                                 " <= " + number(h.rainfall(i - 1).time()) + ")");
+    }
+    finite("hydraulics.ponding_pressure", h.ponding_pressure());
+    double bulk = std::numeric_limits<double>::infinity();  // the smallest K_w of the soils
+    for (int m : soils) {
+      const double k = spec_.materials(m).soil().water_bulk_modulus();
+      bulk = std::min(bulk, k > 0 ? k : kDefaultWaterBulkModulus);
+    }
+    if (!(h.ponding_pressure() > -bulk))
+      error("hydraulics.ponding_pressure", "must be above -K_w = " + number(-bulk) + " Pa (is " +
+                                               number(h.ponding_pressure()) + ")");
+    if (h.has_drying_pressure()) {
+      finite("hydraulics.drying_pressure", h.drying_pressure());
+      if (!(h.drying_pressure() < h.ponding_pressure()))
+        error("hydraulics.drying_pressure", "must be below ponding_pressure (" + number(h.drying_pressure()) +
+                                                " >= " + number(h.ponding_pressure()) + ")");
+      if (!(h.drying_pressure() > -bulk))
+        error("hydraulics.drying_pressure",
+              "must be above -K_w = " + number(-bulk) + " Pa, the smallest pore-water bulk modulus of the soils (is " +
+                  number(h.drying_pressure()) + "): the pore-water density ρ_w0 (1 + p / K_w) must stay positive");
+    }
+    if (h.has_region()) check_min_max("hydraulics.region", h.region().min(), h.region().max(), "the rain region");
   }
 
   const pb::ScenarioSpec& spec_;
@@ -336,11 +457,27 @@ void apply_defaults(pb::ScenarioSpec& spec) {
   if (output.interval() == 0) output.set_interval(spec.end_time() / 100);
   if (!output.has_hdf5()) output.set_hdf5(true);
   for (pb::Material& m : *spec.mutable_materials()) {
-    if (m.model_case() != pb::Material::kWater) continue;
-    pb::WaterModel& w = *m.mutable_water();
-    if (w.density() == 0) w.set_density(1000);
-    if (!w.has_delta()) w.set_delta(0.1);
-    if (!w.has_viscosity_alpha()) w.set_viscosity_alpha(0.01);
+    if (m.model_case() == pb::Material::kWater) {
+      pb::WaterModel& w = *m.mutable_water();
+      if (w.density() == 0) w.set_density(1000);
+      if (!w.has_delta()) w.set_delta(0.1);
+      if (!w.has_viscosity_alpha()) w.set_viscosity_alpha(0.01);
+    }
+    if (m.model_case() != pb::Material::kSoil) continue;
+    pb::SoilModel& s = *m.mutable_soil();
+    if (s.water_bulk_modulus() == 0) s.set_water_bulk_modulus(kDefaultWaterBulkModulus);
+    if (s.pore_sound_speed() == 0) s.set_pore_sound_speed(kPoreSoundSpeedFactor * s.saturated_conductivity());
+    if (!s.has_delta()) s.set_delta(kDefaultPoreDelta);
+    if (!s.has_viscosity_alpha()) s.set_viscosity_alpha(kDefaultSoilViscosityAlpha);
+    pb::HydraulicModel& h = *s.mutable_hydraulic();
+    if (h.has_van_genuchten() && !h.van_genuchten().has_s_max()) h.mutable_van_genuchten()->set_s_max(1);
+    if (h.has_gardner() && !h.gardner().has_s_max()) h.mutable_gardner()->set_s_max(1);
+    if (s.mechanical().has_drucker_prager()) {
+      pb::DruckerPragerModel& d = *s.mutable_mechanical()->mutable_drucker_prager();
+      if (!d.has_residual_cohesion()) d.set_residual_cohesion(d.cohesion());
+      if (!d.has_residual_friction_angle()) d.set_residual_friction_angle(d.friction_angle());
+      if (d.atmospheric_pressure() == 0) d.set_atmospheric_pressure(kDefaultAtmosphericPressure);
+    }
   }
   for (pb::Probe& p : *spec.mutable_probes())
     if (p.phase().empty()) p.set_phase("water");

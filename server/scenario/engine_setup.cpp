@@ -1,9 +1,11 @@
 #include "server/scenario/engine_setup.h"
 
 #include <string>
+#include <vector>
 
 #include "server/scenario/case_error.h"
 #include "server/scenario/particle_builder.h"
+#include "server/scenario/soil_setup.h"
 
 namespace cascade {
 
@@ -29,7 +31,8 @@ EngineConfig engine_config(const v1::ScenarioSpec& spec, const HostParticles& pa
                                                              spec.materials(water).name() + "' is already one");
     water = m;
   }
-  if (water < 0) throw CaseError("materials", "the case needs a water material");
+  const std::vector<int> soils = soil_material_indices(spec);
+  if (water < 0 && soils.empty()) throw CaseError("materials", "the case needs a water or a soil material");
   // The hydrostatic start (particle_builder) measures depth along z: gravity must point down z.
   for (int a = 0; a + 1 < c.dimensions; ++a)
     if (a < spec.gravity_size() && spec.gravity(a) != 0.0)
@@ -37,11 +40,19 @@ EngineConfig engine_config(const v1::ScenarioSpec& spec, const HostParticles& pa
         if (spec.bodies(b).initial().hydrostatic())
           throw CaseError("bodies[" + std::to_string(b) + "].initial.hydrostatic",
                           "a hydrostatic start needs gravity along -z only");
-  const auto& w = spec.materials(water).water();
-  c.water_density = w.density() > 0 ? w.density() : 1000.0;
-  c.sound_speed = water_sound_speed(spec, water, particles);
-  c.delta = w.has_delta() ? w.delta() : 0.1;
-  c.viscosity_alpha = w.has_viscosity_alpha() ? w.viscosity_alpha() : 0.01;
+  // One ρ_w0 for the whole case: the water's, or 1000 kg/m³ in a soil-only case (every particle
+  // has the mass ρ_w0 dp^dimensions, Section 3.2).
+  c.water_density = reference_water_density(spec);
+  if (water >= 0) {
+    const auto& w = spec.materials(water).water();
+    c.sound_speed = water_sound_speed(spec, water, particles);
+    c.delta = w.has_delta() ? w.delta() : 0.1;
+    c.viscosity_alpha = w.has_viscosity_alpha() ? w.viscosity_alpha() : 0.01;
+  } else {
+    c.sound_speed = 0.0;  // no free water
+  }
+  for (int m : soils) c.soils.push_back(soil_material(spec, m));
+  c.forcing = hydraulic_forcing(spec, 0.0);
   c.cfl = spec.numerics().cfl() > 0 ? spec.numerics().cfl() : 0.2;
   c.max_dt = spec.numerics().max_dt();
   c.min_dt = spec.numerics().min_dt() > 0 ? spec.numerics().min_dt() : 1e-12;

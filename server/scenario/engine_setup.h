@@ -9,8 +9,10 @@
 namespace cascade {
 
 // Fills every constant of the engine from the spec (defaults applied) and the particles (the
-// sound speed of Eq. 24a depends on the water's height). Throws CaseError naming the key when the
-// spec has no water material.
+// sound speed of Eq. 24a depends on the water's height): ρ_w0 of the case (the water's, 1000 in a
+// soil-only case), the water constants (c_w0 = 0 without a water material), one SoilMaterial per
+// soil material in spec order (soil_setup.h) and the hydraulic forcing at t = 0. Throws CaseError
+// naming the key when the spec has neither a water nor a soil material, or two water materials.
 EngineConfig engine_config(const v1::ScenarioSpec& spec, const HostParticles& particles, Precision precision,
                            Device device = Device::cpu);
 

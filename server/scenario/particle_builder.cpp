@@ -4,18 +4,20 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <unordered_set>
+#include <utility>
 
 #include "cascade/v1/scenario.pb.h"
 #include "server/scenario/case_error.h"
 #include "server/scenario/geometry.h"
+#include "server/scenario/soil_setup.h"
 
 namespace cascade {
 namespace {
 
 constexpr double kDefaultHOverDp = 1.3;
-constexpr double kDefaultWaterDensity = 1000.0;
 
 std::string body_key(int i) { return "bodies[" + std::to_string(i) + "]"; }
 
@@ -28,12 +30,6 @@ std::string format_point(const Vec3& x, int dimensions) {
 
 double water_density(const v1::Material& m) {
   return m.water().density() > 0.0 ? m.water().density() : kDefaultWaterDensity;
-}
-
-double gravity_magnitude(const v1::ScenarioSpec& spec) {
-  double g2 = 0.0;
-  for (double g : spec.gravity()) g2 += g * g;
-  return std::sqrt(g2);
 }
 
 // The axes a case uses in the 3D embedding: (x, z) in 2D.
@@ -72,6 +68,7 @@ class Builder {
   void add_particle(const Vec3& x, const Vec3& ghost, Phase phase, const Vec3& velocity, int body);
   void check_inside_domain(int body) const;
   void set_densities();
+  void set_soil_state(int body);
 
   const v1::ScenarioSpec& spec_;
   int dims_ = 3;
@@ -81,6 +78,8 @@ class Builder {
   std::vector<Region> regions_;            // per body
   std::vector<bool> is_fluid_;             // per body
   std::vector<int> material_;              // per body: material index, -1 for BOUNDARY
+  std::vector<int> soil_;                  // per body: index into soils_, -1 unless a soil body
+  std::vector<SoilMaterial> soils_;        // the soil materials, as EngineConfig::soils
   std::vector<std::vector<Face>> wetted_;  // per body: its wetted surface pieces (BOUNDARY)
   std::vector<Face> all_wetted_;           // every BOUNDARY body's wetted pieces
   std::vector<Aabb> all_wetted_bounds_;
@@ -111,6 +110,8 @@ void Builder::read_case() {
     periodic_[ax[c]] = d.periodic_size() ? d.periodic(c) : false;
   }
 
+  for (int m : soil_material_indices(spec_)) soils_.push_back(soil_material(spec_, m));
+
   // Half-space faces reach well beyond the domain, so closest points inside it are exact.
   const Aabb face_bounds = domain_.expanded((domain_.hi - domain_.lo).norm() + 10.0 * dp_);
   for (int i = 0; i < spec_.bodies_size(); ++i) {
@@ -124,17 +125,23 @@ void Builder::read_case() {
     regions_.emplace_back(std::move(shape), std::move(sub));
     is_fluid_.push_back(b.kind() == v1::FLUID);
 
-    int material = -1;
+    int material = -1, soil = -1;
     if (b.kind() == v1::FLUID) {
       for (int m = 0; m < spec_.materials_size() && material < 0; ++m)
         if (spec_.materials(m).name() == b.material()) material = m;
       if (material < 0) throw CaseError(key + ".material", "no material named '" + b.material() + "'");
-      if (spec_.materials(material).model_case() != v1::Material::kWater)
-        throw CaseError(key + ".material", "material '" + b.material() + "' is not a fluid (water) material");
+      const v1::Material& m = spec_.materials(material);
+      if (m.model_case() != v1::Material::kWater && m.model_case() != v1::Material::kSoil)
+        throw CaseError(key + ".material", "material '" + b.material() + "' is neither water nor soil");
+      if (m.has_soil()) {
+        const std::vector<int> soils = soil_material_indices(spec_);
+        soil = static_cast<int>(std::find(soils.begin(), soils.end(), material) - soils.begin());
+      }
     } else if (b.layers() < 0) {
       throw CaseError(key + ".layers", "must not be negative");
     }
     material_.push_back(material);
+    soil_.push_back(soil);
     if (b.initial().velocity_size() != 0 && b.initial().velocity_size() != dims_)
       throw CaseError(key + ".initial.velocity", "needs " + std::to_string(dims_) + " components");
   }
@@ -230,6 +237,9 @@ void Builder::add_particle(const Vec3& x, const Vec3& ghost, Phase phase, const 
   }
   p.phase.push_back(phase);
   p.water_density.push_back(0.0);  // set_densities
+  p.porosity.push_back(0.0);       // set_soil_state, for soil particles
+  p.soil_material.push_back(0);
+  p.effective_stress.insert(p.effective_stress.end(), 6, 0.0);
   p.body.push_back(static_cast<std::uint32_t>(body));
 }
 
@@ -242,6 +252,7 @@ void Builder::add_fluid(int body) {
   Vec3 velocity = Vec3::Zero();
   const auto& v = spec_.bodies(body).initial().velocity();
   for (int c = 0; c < v.size(); ++c) velocity[axes(dims_)[c]] = v[c];
+  const Phase phase = soil_[body] >= 0 ? Phase::soil : Phase::water;
 
   for (std::int64_t k = l.first[2]; k <= l.last[2]; ++k)
     for (std::int64_t j = l.first[1]; j <= l.last[1]; ++j)
@@ -251,7 +262,7 @@ void Builder::add_fluid(int body) {
         bool taken = false;
         for (const Region* r : excluded)
           if ((taken = r->contains(x))) break;
-        if (!taken) add_particle(x, x, Phase::water, velocity, body);
+        if (!taken) add_particle(x, x, phase, velocity, body);
       }
 }
 
@@ -309,18 +320,17 @@ void Builder::check_inside_domain(int body) const {
 
 void Builder::set_densities() {
   HostParticles& p = out_.particles;
-  double boundary_density = kDefaultWaterDensity;
-  for (const auto& m : spec_.materials())
-    if (m.model_case() == v1::Material::kWater) {
-      boundary_density = water_density(m);
-      break;
-    }
+  const double boundary_density = reference_water_density(spec_);
   const double g = gravity_magnitude(spec_);
   const int z = dims_ - 1;
   for (std::size_t b = 0; b < out_.bodies.size(); ++b) {
     const BodyReport& r = out_.bodies[b];
     if (!is_fluid_[b]) {
       std::fill_n(p.water_density.begin() + r.first, r.count, boundary_density);
+      continue;
+    }
+    if (soil_[b] >= 0) {
+      set_soil_state(static_cast<int>(b));
       continue;
     }
     const v1::Material& m = spec_.materials(material_[b]);
@@ -337,6 +347,88 @@ void Builder::set_densities() {
       const double pressure = rho0 * g * (top - p.position[n * dims_ + z]);
       p.water_density[n] = rho0 + pressure / (c0 * c0);  // Eq. 6 with K_w = ρ_w0 c_w0²
     }
+  }
+}
+
+// ρ_s = (1 − φ) ρ_s0 + S_w φ ρ_w0 (Eq. 28a) integrated over [z0, z1] by 5-point Gauss–Legendre,
+// split at the water table, where S_w has its kink (p_c = 0).
+double mixture_weight(const SoilMaterial& soil, double porosity, double rho_w0, double g,
+                      const v1::InitialState& initial, double z0, double z1) {
+  static constexpr double kNodes[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640,
+                                       0.9061798459386640};
+  static constexpr double kWeights[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665,
+                                         0.2369268850561891, 0.2369268850561891};
+  const auto integrate = [&](double a, double b) {
+    double sum = 0.0;
+    for (int q = 0; q < 5; ++q) {
+      const double zq = 0.5 * (a + b) + 0.5 * (b - a) * kNodes[q];
+      const double s_w = soil.hydraulic.saturation(-initial_pore_pressure(initial, rho_w0, g, zq));
+      sum += kWeights[q] * ((1.0 - porosity) * soil.grain_density + s_w * porosity * rho_w0);
+    }
+    return 0.5 * (b - a) * sum;
+  };
+  if (initial.has_water_table() && initial.water_table() > z0 && initial.water_table() < z1)
+    return integrate(z0, initial.water_table()) + integrate(initial.water_table(), z1);
+  return integrate(z0, z1);
+}
+
+// Pore pressure, pore-water density, porosity and the geostatic effective stress of a soil body
+// (scenario.proto, InitialState). Each particle's vertical stress integrates the mixture's weight
+// down its lattice column from the column's top (its highest particle of this body + dp/2).
+void Builder::set_soil_state(int body) {
+  HostParticles& p = out_.particles;
+  const BodyReport& r = out_.bodies[body];
+  const v1::InitialState& initial = spec_.bodies(body).initial();
+  const SoilMaterial& soil = soils_[soil_[body]];
+  const double porosity = spec_.materials(material_[body]).soil().porosity();
+  const double rho_w0 = reference_water_density(spec_), g = gravity_magnitude(spec_);
+  const double k0 = earth_pressure_coefficient(soil, initial);
+  const int z = dims_ - 1;
+  const auto level = [&](std::size_t n, int c) { return std::llround(p.position[n * dims_ + c] / dp_ - 0.5); };
+
+  // The top lattice level of each column, and the levels the body spans.
+  std::map<std::pair<long long, long long>, long long> top;
+  long long lowest = std::numeric_limits<long long>::max(), highest = std::numeric_limits<long long>::min();
+  for (std::size_t n = r.first; n < r.first + r.count; ++n) {
+    const long long k = level(n, z);
+    const auto column = std::make_pair(level(n, 0), dims_ == 3 ? level(n, 1) : 0LL);
+    const auto [it, added] = top.emplace(column, k);
+    if (!added) it->second = std::max(it->second, k);
+    lowest = std::min(lowest, k), highest = std::max(highest, k);
+  }
+  // weight[m] = ∫ ρ_s dz from the bottom of the body's lowest particles, lowest · dp, up to the half
+  // level lowest · dp + m dp/2: particle centres (odd m) and column tops (even m) are such levels.
+  const double bottom = double(lowest) * dp_;
+  std::vector<double> weight(2 * std::size_t(highest - lowest + 1) + 1, 0.0);
+  for (std::size_t m = 1; m < weight.size(); ++m)
+    weight[m] = weight[m - 1] + mixture_weight(soil, porosity, rho_w0, g, initial, bottom + 0.5 * dp_ * double(m - 1),
+                                               bottom + 0.5 * dp_ * double(m));
+
+  const std::string key = body_key(body) + ".initial";
+  for (std::size_t n = r.first; n < r.first + r.count; ++n) {
+    const long long k = level(n, z);
+    const long long k_top = top.at(std::make_pair(level(n, 0), dims_ == 3 ? level(n, 1) : 0LL));
+    const double zn = p.position[n * dims_ + z], z_top = (double(k_top) + 1.0) * dp_;
+    const double p_w = initial_pore_pressure(initial, rho_w0, g, zn);
+    if (!(p_w > -soil.water_bulk_modulus)) {
+      std::ostringstream message;
+      message << "gives the pore pressure " << p_w << " Pa at z = " << zn << " m, at or below -K_w = "
+              << -soil.water_bulk_modulus << " Pa, where the pore-water density ρ_w0 (1 + p_w / K_w) is no longer "
+              << "positive";
+      throw CaseError(key + (initial.has_water_table() ? ".water_table" : ".suction"), message.str());
+    }
+    // Water standing on the body when the table is above its top: the column carries it.
+    const double surcharge = std::max(0.0, initial_pore_pressure(initial, rho_w0, g, z_top));
+    const double total = -surcharge - g * (weight[2 * std::size_t(k_top - lowest + 1)] -
+                                           weight[2 * std::size_t(k - lowest) + 1]);
+    const double effective = total + soil.hydraulic.saturation(-p_w) * p_w;  // Bishop, Eq. 7
+    double* stress = &p.effective_stress[6 * n];
+    stress[0] = stress[1] = k0 * effective;
+    stress[2] = effective;
+    stress[3] = stress[4] = stress[5] = 0.0;
+    p.water_density[n] = rho_w0 * (1.0 + p_w / soil.water_bulk_modulus);  // Eq. 36b
+    p.porosity[n] = porosity;
+    p.soil_material[n] = static_cast<std::uint8_t>(soil_[body]);
   }
 }
 

@@ -1,4 +1,5 @@
-// Scenario → initial particles: water particles on a global lattice filling the FLUID bodies, and
+// Scenario → initial particles: water or soil particles on a global lattice filling the FLUID
+// bodies (by their material), and
 // the dummy particles of the BOUNDARY bodies with their ghost nodes (paper Section 3.3.1; set up
 // the way DualSPHysics' mDBC does it: each dummy particle b is mirrored into the fluid across the
 // closest point of the wetted solid surface).
@@ -23,7 +24,7 @@ namespace cascade {
 struct BodyReport {
   std::string name;
   std::size_t first = 0;        // index of its first particle
-  std::size_t count = 0;        // its particles (water or dummy)
+  std::size_t count = 0;        // its particles (water, soil or dummy)
   double thickness = 0.0;       // BOUNDARY: depth of the dummy layers below the wetted surface (m)
   double wetted_surface = 0.0;  // BOUNDARY: length (2D) or area (3D) of its wetted surface in the domain
 };
@@ -40,8 +41,14 @@ constexpr double kMaxParticles = 5e7;
 // Builds the initial particles. Particles come body by body in spec order, each body's in
 // (z, y, x) lexicographic lattice order, so the result is deterministic.
 //  - FLUID: lattice points in the body's region, outside every BOUNDARY body's solid and not in an
-//    earlier FLUID body's region. Density ρ_w0, or hydrostatic (`initial.hydrostatic`):
-//    ρ_w = ρ_w0 + ρ_w0 |g| (z_top - z) / c_w0², z_top = the body's highest particle + dp/2 (Eq. 6).
+//    earlier FLUID body's region (list a soil body before the water over it). Water: density ρ_w0,
+//    or hydrostatic (`initial.hydrostatic`): ρ_w = ρ_w0 + ρ_w0 |g| (z_top - z) / c_w0², z_top = the
+//    body's highest particle + dp/2 (Eq. 6). Soil (phase soil): porosity φ0, soil_material the
+//    index among the case's soil materials, pore pressure p_w from `initial` (suction or water
+//    table) as the pore-water density ρ_w = ρ_w0 (1 + p_w/K_w) (Eq. 36b), and the geostatic
+//    effective stress of InitialState.k0 in scenario.proto. Other particles get porosity 0 and a
+//    zero effective stress. ρ_w0 is the case's (reference_water_density, soil_setup.h).
+//    Soil bodies are wetted like water bodies: walls under and beside them get dummy layers.
 //  - BOUNDARY: lattice points in the body's solid, not taken by an earlier BOUNDARY body, closer
 //    than `boundary_thickness` to the wetted surface, i.e. the surface of all solids that is neither
 //    covered by another solid nor facing out of the domain. Ghost node x_g = 2 s - x_b with s the

@@ -2,7 +2,7 @@
 with one line on stderr that names the key (and, for a key in the file, its line).
 
 Each tests/cli/bad_cases/NAME.yaml is cases/hydrostatic_tank_2d.yaml with one defect and the same line
-numbers; BAD_CASES below says what each must report.
+numbers, or, for the soil_* files, cases/infiltration_1d.yaml; BAD_CASES below says what each must report.
 """
 
 import re
@@ -45,6 +45,19 @@ BAD_CASES = {
     # Errors of the particle builder: they name the key but carry no line.
     "empty_fluid": (r"bodies\[1\]", None, r"body 'water' has no particles"),
     "no_sound_speed": (r"materials\[0\]\.water\.sound_speed", None, r"no sound speed"),
+    # Soil materials, soil bodies and hydraulics (copies of cases/infiltration_1d.yaml).
+    "soil_conductivity_zero": (r"materials\[0\]\.soil\.saturated_conductivity", 29, r"must be greater than 0 \(is 0\)"),
+    "soil_porosity_one": (r"materials\[0\]\.soil\.porosity", 28, r"must be in \(0, 1\) \(is 1\)"),
+    "soil_s_min_above_s_max": (r"materials\[0\]\.soil\.hydraulic\.gardner\.s_min", 43,
+                               r"s_min must be less than s_max \(got s_min 0\.8, s_max 0\.5\)"),
+    "soil_friction_angle_90": (r"materials\[0\]\.soil\.mechanical\.drucker_prager\.friction_angle", 41,
+                               r"must be in \[0, 90\) degrees \(is 90\)"),
+    "soil_unknown_hydraulic_model": (r"materials\[0\]\.soil\.hydraulic\.brooks_corey", 43,
+                                     r"unknown key \(known here: van_genuchten, gardner, liakopoulos\)"),
+    "soil_drying_above_ponding": (r"hydraulics\.drying_pressure", 62, r"must be below ponding_pressure"),
+    "soil_probe_phase_water": (r"probes\[0\]\.phase", 69, r"'pore_pressure' is a field of soil particles"),
+    # The particle builder knows the body's extent: p_w = ρ g (z_wt - z) < -K_w at the top.
+    "soil_water_table_too_deep": (r"bodies\[1\]\.initial\.water_table", None, r"at or below -K_w = -200000"),
 }
 
 BASE = "hydrostatic_tank_2d"

@@ -2,11 +2,15 @@
 // kind of mistake is a CaseError that names the key and its line.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <functional>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "server/scenario/case_loader.h"
+#include "server/scenario/soil_setup.h"
 
 namespace cascade {
 namespace {
@@ -509,6 +513,466 @@ TEST(ValidateSpec, ZeroMeansDefault) {
   apply_defaults(spec);
   EXPECT_DOUBLE_EQ(spec.h_over_dp(), 1.3);
   EXPECT_DOUBLE_EQ(spec.output().interval(), 0.01);
+}
+
+// --- Soil materials, soil bodies, hydraulics -----------------------------------------------------
+
+// A small soil case (Table 2's soil on an impermeable base, periodic in x); the soil tests break it
+// one line at a time.
+const std::vector<std::string> kSoilBase = {
+    "dimensions: 2",                                                                          // 1
+    "dp: 0.02",                                                                               // 2
+    "h_over_dp: 1.8",                                                                         // 3
+    "end_time: 100.0",                                                                        // 4
+    "domain:",                                                                                // 5
+    "  min: [0.0, -0.08]",                                                                    // 6
+    "  max: [0.24, 1.1]",                                                                     // 7
+    "  periodic: [true, false]",                                                              // 8
+    "gravity: [0, -9.81]",                                                                    // 9
+    "materials:",                                                                             // 10
+    "  - name: sand",                                                                         // 11
+    "    soil:",                                                                              // 12
+    "      grain_density: 2650",                                                              // 13
+    "      porosity: 0.3",                                                                    // 14
+    "      saturated_conductivity: 1e-3",                                                     // 15
+    "      water_bulk_modulus: 2e6",                                                          // 16
+    "      hydraulic: {van_genuchten: {s_min: 0.3, s_max: 1.0, lambda: 0.447, p_ref: 19357}}",  // 17
+    "      mechanical: {drucker_prager: {youngs_modulus: 50e6, poisson_ratio: 0.3, cohesion: 10e3, "
+    "residual_cohesion: 3e3, friction_angle: 34, residual_friction_angle: 32, softening_coefficient: 1, "
+    "suction_cohesion: 10e3, suction_cohesion_rate: 10, suction_friction_rate: 2}}",        // 18
+    "bodies:",                                                                                // 19
+    "  - name: base",                                                                         // 20
+    "    kind: boundary",                                                                     // 21
+    "    shape: {box: {min: [0, -0.08], max: [0.24, 0]}}",                                    // 22
+    "  - name: slope",                                                                        // 23
+    "    kind: fluid",                                                                        // 24
+    "    material: sand",                                                                     // 25
+    "    shape: {box: {min: [0, 0], max: [0.24, 1.0]}}",                                      // 26
+    "    initial: {water_table: 0.5, k0: 0.5}",                                               // 27
+    "hydraulics:",                                                                            // 28
+    "  rainfall_intensity: 1e-5",                                                             // 29
+    "  ponding_pressure: 0",                                                                  // 30
+    "probes:",                                                                                // 31
+    "  - {name: p, kind: point, field: pore_pressure, phase: soil, position: [0.12, 0.5]}",   // 32
+};
+
+std::string soil_base() { return join(kSoilBase); }
+
+std::string soil_with_line(int n, const std::string& text) {
+  std::vector<std::string> lines = kSoilBase;
+  lines.at(n - 1) = text;
+  return join(lines);
+}
+
+std::string soil_without_lines(int first, int last) {
+  std::vector<std::string> lines = kSoilBase;
+  lines.erase(lines.begin() + first - 1, lines.begin() + last);
+  return join(lines);
+}
+
+// The mechanical line (18) with one Drucker-Prager parameter set to `value`.
+std::string drucker_prager_line(const std::string& parameters) {
+  return "      mechanical: {drucker_prager: {" + parameters + "}}";
+}
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+TEST(SoilCases, SoilCaseLoadsWithDefaults) {
+  const pb::ScenarioSpec spec = load_case_text(soil_base());
+  ASSERT_TRUE(spec.materials(0).has_soil());
+  const pb::SoilModel& soil = spec.materials(0).soil();
+  EXPECT_DOUBLE_EQ(soil.grain_density(), 2650);
+  EXPECT_DOUBLE_EQ(soil.porosity(), 0.3);
+  EXPECT_DOUBLE_EQ(soil.pore_sound_speed(), 10 * 1e-3);  // c_pw0 = 10 K_sat
+  EXPECT_DOUBLE_EQ(soil.delta(), 0.1);
+  EXPECT_DOUBLE_EQ(soil.viscosity_alpha(), 0.1);
+  EXPECT_FALSE(soil.rigid());
+  EXPECT_DOUBLE_EQ(soil.hydraulic().van_genuchten().p_ref(), 19357);
+  const pb::DruckerPragerModel& dp = soil.mechanical().drucker_prager();
+  EXPECT_DOUBLE_EQ(dp.friction_angle(), 34);  // degrees in the spec
+  EXPECT_DOUBLE_EQ(dp.atmospheric_pressure(), 101e3);
+  EXPECT_TRUE(spec.bodies(1).initial().has_water_table());
+  EXPECT_DOUBLE_EQ(spec.bodies(1).initial().water_table(), 0.5);
+  EXPECT_DOUBLE_EQ(spec.bodies(1).initial().k0(), 0.5);
+  EXPECT_DOUBLE_EQ(spec.hydraulics().rainfall_intensity(), 1e-5);
+  EXPECT_FALSE(spec.hydraulics().has_drying_pressure());
+  EXPECT_EQ(spec.probes(0).phase(), "soil");
+
+  // Left out: K_w 2e6, s_max 1, the residual strength = the peak one.
+  const pb::ScenarioSpec defaults = load_case_text(soil_with_line(16, "      delta: 0.2"));  // no K_w
+  EXPECT_DOUBLE_EQ(defaults.materials(0).soil().water_bulk_modulus(), 2e6);
+  EXPECT_DOUBLE_EQ(defaults.materials(0).soil().delta(), 0.2);
+  const pb::ScenarioSpec peak = load_case_text(soil_with_line(
+      18, drucker_prager_line("youngs_modulus: 1e7, poisson_ratio: 0.25, cohesion: 5e3, friction_angle: 30")));
+  const pb::DruckerPragerModel& d = peak.materials(0).soil().mechanical().drucker_prager();
+  EXPECT_DOUBLE_EQ(d.residual_cohesion(), 5e3);
+  EXPECT_DOUBLE_EQ(d.residual_friction_angle(), 30);
+  const pb::ScenarioSpec gardner =
+      load_case_text(soil_with_line(17, "      hydraulic: {gardner: {s_min: 0.23, alpha: 2}}"));
+  EXPECT_DOUBLE_EQ(gardner.materials(0).soil().hydraulic().gardner().s_max(), 1);
+}
+
+TEST(SoilCases, SoilMaterialForTheEngine) {
+  const pb::ScenarioSpec spec = load_case_text(soil_base());
+  ASSERT_EQ(soil_material_indices(spec), std::vector<int>{0});
+  const SoilMaterial m = soil_material(spec, 0);
+  EXPECT_DOUBLE_EQ(m.grain_density, 2650);
+  EXPECT_DOUBLE_EQ(m.saturated_conductivity, 1e-3);
+  EXPECT_DOUBLE_EQ(m.water_bulk_modulus, 2e6);
+  EXPECT_DOUBLE_EQ(m.pore_sound_speed, 1e-2);
+  EXPECT_DOUBLE_EQ(m.delta, 0.1);
+  EXPECT_DOUBLE_EQ(m.viscosity_alpha, 0.1);
+  EXPECT_FALSE(m.rigid);
+  ASSERT_EQ(m.hydraulic.kind, HydraulicModel<double>::Kind::van_genuchten);
+  EXPECT_DOUBLE_EQ(m.hydraulic.van_genuchten.lambda, 0.447);
+  // The model is wired: Eq. 14 (ERRATA.md) with Table 2's constants, saturated at p_c <= 0.
+  EXPECT_DOUBLE_EQ(m.hydraulic.saturation(-1.0), 1.0);
+  EXPECT_NEAR(m.hydraulic.saturation(7e3), 0.3 + 0.7 * std::pow(1 + std::pow(7e3 / 19357, 1 / (1 - 0.447)), -0.447),
+              1e-12);
+  const SoilModel<double>& dp = m.mechanical;
+  ASSERT_EQ(dp.kind, SoilModel<double>::Kind::drucker_prager);
+  EXPECT_DOUBLE_EQ(dp.youngs_modulus, 50e6);
+  EXPECT_DOUBLE_EQ(dp.poisson_ratio, 0.3);
+  EXPECT_DOUBLE_EQ(dp.peak_cohesion, 10e3);
+  EXPECT_DOUBLE_EQ(dp.residual_cohesion, 3e3);
+  EXPECT_NEAR(dp.peak_friction_angle, 34 * kDegree, 1e-15);  // degrees → radians
+  EXPECT_NEAR(dp.residual_friction_angle, 32 * kDegree, 1e-15);
+  EXPECT_DOUBLE_EQ(dp.dilatancy_angle, 0);
+  EXPECT_DOUBLE_EQ(dp.softening_coefficient, 1);
+  EXPECT_DOUBLE_EQ(dp.suction_cohesion, 10e3);
+  EXPECT_DOUBLE_EQ(dp.suction_cohesion_rate, 10);
+  EXPECT_NEAR(dp.suction_friction_rate, 2 * kDegree, 1e-15);
+  EXPECT_DOUBLE_EQ(dp.atmospheric_pressure, 101e3);
+
+  // Gardner and Liakopoulos read the head p_c/(ρ_w0 |g|); a soil-only case has ρ_w0 = 1000.
+  const pb::ScenarioSpec g = load_case_text(soil_with_line(17, "      hydraulic: {gardner: {s_min: 0.23, alpha: 2}}"));
+  EXPECT_DOUBLE_EQ(reference_water_density(g), 1000);
+  const SoilMaterial gm = soil_material(g, 0);
+  ASSERT_EQ(gm.hydraulic.kind, HydraulicModel<double>::Kind::gardner);
+  EXPECT_NEAR(gm.hydraulic.gardner.unit_weight, 9810, 1e-9);
+  EXPECT_DOUBLE_EQ(gm.hydraulic.gardner.s_max, 1);
+  const pb::ScenarioSpec l = load_case_text(soil_with_line(17, "      hydraulic: {liakopoulos: {}}"));
+  ASSERT_EQ(soil_material(l, 0).hydraulic.kind, HydraulicModel<double>::Kind::liakopoulos);
+
+  // A rigid soil needs no mechanical model: a placeholder that validates; K0 is then 1.
+  const pb::ScenarioSpec rigid = load_case_text(soil_with_line(18, "      rigid: true"));
+  const SoilMaterial rm = soil_material(rigid, 0);
+  EXPECT_TRUE(rm.rigid);
+  EXPECT_EQ(rm.mechanical.validate(), "");
+  pb::InitialState no_k0;
+  EXPECT_DOUBLE_EQ(earth_pressure_coefficient(rm, no_k0), 1.0);
+  EXPECT_NEAR(earth_pressure_coefficient(m, no_k0), 0.3 / 0.7, 1e-15);  // ν/(1 − ν)
+  EXPECT_DOUBLE_EQ(earth_pressure_coefficient(m, spec.bodies(1).initial()), 0.5);
+}
+
+TEST(SoilCases, SoilOnlyAndSoilWithWaterCases) {
+  // ρ_w0 is the water material's when there is one.
+  const pb::ScenarioSpec spec = load_case_text(soil_with_line(
+      11, "  - name: water\n    water: {density: 1020}\n  - name: sand"));
+  EXPECT_DOUBLE_EQ(reference_water_density(spec), 1020);
+  EXPECT_EQ(soil_material_indices(spec), std::vector<int>{1});
+  expect_error(soil_with_line(11, "  - name: water\n    water: {}\n  - name: sea\n    water: {}\n  - name: sand"),
+               {"materials[1]", 13, "a case has one water material; 'water' is already one"});
+  // A case needs a water or a soil material.
+  std::vector<std::string> lines = kSoilBase;
+  lines.erase(lines.begin() + 10, lines.begin() + 18);
+  lines[9] = "materials: []";
+  expect_error(join(lines), {"materials", 10, "a case needs a water or a soil material"});
+}
+
+TEST(SoilCases, HydraulicForcingTimeSeriesIsPiecewiseConstant) {
+  const pb::ScenarioSpec constant = load_case_text(soil_base());
+  HydraulicForcing f = hydraulic_forcing(constant, 50.0);
+  EXPECT_DOUBLE_EQ(f.rainfall_intensity, 1e-5);
+  EXPECT_DOUBLE_EQ(f.ponding_pressure, 0);
+  EXPECT_EQ(f.drying_pressure, -std::numeric_limits<double>::infinity());
+  EXPECT_FALSE(f.has_region);
+
+  const pb::ScenarioSpec series = load_case_text(soil_with_line(
+      29, "  rainfall: [{time: 10, intensity: 2e-5}, {time: 20, intensity: -1e-6}]\n  drying_pressure: -5e4\n"
+          "  region: {min: [0.0, 0.5], max: [0.12, 1.0]}"));
+  EXPECT_DOUBLE_EQ(hydraulic_forcing(series, 0).rainfall_intensity, 0);  // before the first point
+  EXPECT_DOUBLE_EQ(hydraulic_forcing(series, 10).rainfall_intensity, 2e-5);
+  EXPECT_DOUBLE_EQ(hydraulic_forcing(series, 19.999).rainfall_intensity, 2e-5);
+  EXPECT_DOUBLE_EQ(hydraulic_forcing(series, 20).rainfall_intensity, -1e-6);
+  f = hydraulic_forcing(series, 1e6);
+  EXPECT_DOUBLE_EQ(f.rainfall_intensity, -1e-6);
+  EXPECT_DOUBLE_EQ(f.drying_pressure, -5e4);
+  EXPECT_TRUE(f.has_region);
+  EXPECT_DOUBLE_EQ(f.region_min[0], 0.0);
+  EXPECT_DOUBLE_EQ(f.region_min[1], 0.5);  // (x, z) in 2D
+  EXPECT_DOUBLE_EQ(f.region_max[0], 0.12);
+  EXPECT_DOUBLE_EQ(f.region_max[1], 1.0);
+}
+
+TEST(SoilCases, ShippedSoilCasesLoad) {
+  for (const char* name : {"infiltration_1d", "evaporation_1d"}) {
+    SCOPED_TRACE(name);
+    const pb::ScenarioSpec spec = load_case_file(kCases + name + ".yaml");
+    EXPECT_EQ(spec.dimensions(), 2);
+    EXPECT_DOUBLE_EQ(spec.dp(), 0.02);
+    EXPECT_DOUBLE_EQ(spec.h_over_dp(), 1.8);
+    // Half a day of rain: the base would saturate after about 0.6 day (cases/infiltration_1d.yaml).
+    EXPECT_DOUBLE_EQ(spec.end_time(), std::string(name) == "infiltration_1d" ? 43200 : 86400);
+    EXPECT_DOUBLE_EQ(spec.output().interval(), 8640);
+    // The periodic width spans 3 kernel supports with the skin, 6.3 h, in whole spacings.
+    const double width = spec.domain().max(0) - spec.domain().min(0);
+    EXPECT_GE(width, 6.3 * 1.8 * 0.02);
+    EXPECT_LT(width - 0.02, 6.3 * 1.8 * 0.02);
+    ASSERT_TRUE(spec.domain().periodic(0));
+    const pb::SoilModel& soil = spec.materials(0).soil();
+    EXPECT_TRUE(soil.rigid());
+    EXPECT_DOUBLE_EQ(soil.porosity(), 0.4);
+    EXPECT_NEAR(soil.saturated_conductivity() * 86400, 1.0, 1e-4);  // 1 m/day
+    EXPECT_DOUBLE_EQ(soil.water_bulk_modulus(), 2e6);
+    EXPECT_DOUBLE_EQ(soil.hydraulic().gardner().s_min(), 0.23);
+    EXPECT_DOUBLE_EQ(soil.hydraulic().gardner().alpha(), 2);
+    EXPECT_DOUBLE_EQ(spec.bodies(1).initial().water_table(), 0);
+    ASSERT_EQ(spec.probes_size(), 6);
+    EXPECT_EQ(spec.probes(5).name(), "p_z2_95");
+    EXPECT_DOUBLE_EQ(spec.probes(5).position(1), 2.95);
+    EXPECT_EQ(spec.probes(5).field(), "pore_pressure");
+  }
+  EXPECT_NEAR(load_case_file(kCases + "infiltration_1d.yaml").hydraulics().rainfall_intensity() * 86400, 0.1, 1e-5);
+  const pb::ScenarioSpec evaporation = load_case_file(kCases + "evaporation_1d.yaml");
+  EXPECT_NEAR(evaporation.hydraulics().rainfall_intensity() * 86400, -0.002, 1e-7);
+  EXPECT_DOUBLE_EQ(evaporation.hydraulics().drying_pressure(), -1e5);
+}
+
+TEST(SoilErrors, ConductivityNotPositive) {
+  expect_error(soil_with_line(15, "      saturated_conductivity: 0"),
+               {"materials[0].soil.saturated_conductivity", 15, "must be greater than 0 (is 0)"});
+  expect_error(soil_with_line(15, "      saturated_conductivity: -1e-4"),
+               {"materials[0].soil.saturated_conductivity", 15, "must be greater than 0"});
+}
+
+TEST(SoilErrors, PorosityOutsideZeroOne) {
+  for (const char* value : {"0", "1", "-0.1", "1.5"})
+    expect_error(soil_with_line(14, std::string("      porosity: ") + value),
+                 {"materials[0].soil.porosity", 14, "must be in (0, 1)"});
+}
+
+TEST(SoilErrors, OtherSoilParameters) {
+  expect_error(soil_with_line(13, "      grain_density: 0"), {"materials[0].soil.grain_density", 13, "greater than 0"});
+  expect_error(soil_with_line(16, "      water_bulk_modulus: -2e6"),
+               {"materials[0].soil.water_bulk_modulus", 16, "must not be negative"});
+  expect_error(soil_with_line(16, "      delta: 2"), {"materials[0].soil.delta", 16, "must be in [0, 1]"});
+  expect_error(soil_with_line(16, "      viscosity_alpha: -0.1"),
+               {"materials[0].soil.viscosity_alpha", 16, "must not be negative"});
+  expect_error(soil_with_line(16, "      pore_sound_speed: -1"),
+               {"materials[0].soil.pore_sound_speed", 16, "must not be negative"});
+}
+
+TEST(SoilErrors, FrictionAngleOutsideZeroToNinety) {
+  for (const char* angle : {"90", "95", "-1"})
+    expect_error(soil_with_line(18, drucker_prager_line(std::string("youngs_modulus: 1e7, poisson_ratio: 0.3, "
+                                                                    "friction_angle: ") + angle)),
+                 {"materials[0].soil.mechanical.drucker_prager.friction_angle", 18, "must be in [0, 90) degrees"});
+  expect_error(soil_with_line(18, drucker_prager_line("youngs_modulus: 1e7, poisson_ratio: 0.3, friction_angle: 30, "
+                                                      "residual_friction_angle: 35")),
+               {"materials[0].soil.mechanical.drucker_prager.residual_friction_angle", 18,
+                "must not exceed peak_friction_angle"});
+  expect_error(soil_with_line(18, drucker_prager_line("youngs_modulus: 1e7, poisson_ratio: 0.3, friction_angle: 30, "
+                                                      "dilatancy_angle: 31")),
+               {"materials[0].soil.mechanical.drucker_prager.dilatancy_angle", 18, "must not exceed"});
+}
+
+TEST(SoilErrors, SoilModelValidateNamesTheKey) {
+  // Every message of SoilModel::validate(), under the key of the case file.
+  const struct {
+    std::string parameters, key, message;
+  } cases[] = {
+      {"youngs_modulus: 0, poisson_ratio: 0.3", "youngs_modulus", "youngs_modulus must be"},
+      {"youngs_modulus: 1e7, poisson_ratio: 0.5", "poisson_ratio", "poisson_ratio must lie in (-1, 0.5)"},
+      {"youngs_modulus: 1e7, poisson_ratio: 0.3, cohesion: -1", "cohesion", "peak_cohesion must be"},
+      {"youngs_modulus: 1e7, poisson_ratio: 0.3, cohesion: 1e3, residual_cohesion: 2e3", "residual_cohesion",
+       "must not exceed peak_cohesion"},
+      {"youngs_modulus: 1e7, poisson_ratio: 0.3, softening_coefficient: -1", "softening_coefficient", "must be"},
+      {"youngs_modulus: 1e7, poisson_ratio: 0.3, suction_cohesion: -1", "suction_cohesion", "must be"},
+      {"youngs_modulus: 1e7, poisson_ratio: 0.3, suction_cohesion_rate: -1", "suction_cohesion_rate", "must be"},
+      {"youngs_modulus: 1e7, poisson_ratio: 0.3, suction_friction_rate: -1", "suction_friction_rate", "must be"},
+      {"youngs_modulus: 1e7, poisson_ratio: 0.3, atmospheric_pressure: -1", "atmospheric_pressure", "must be"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.parameters);
+    expect_error(soil_with_line(18, drucker_prager_line(c.parameters)),
+                 {"materials[0].soil.mechanical.drucker_prager." + c.key, 18, c.message});
+  }
+  expect_error(soil_with_line(18, "      mechanical: {linear_elastic: {youngs_modulus: 1e7, poisson_ratio: 0.6}}"),
+               {"materials[0].soil.mechanical.linear_elastic.poisson_ratio", 18, "must lie in (-1, 0.5)"});
+  expect_error(soil_with_line(18, "      mechanical: {linear_elastic: {poisson_ratio: 0.2}}"),
+               {"materials[0].soil.mechanical.linear_elastic.youngs_modulus", 18, "must be a finite value > 0"});
+}
+
+TEST(SoilErrors, SaturationRangeAndHydraulicModelChecks) {
+  expect_error(soil_with_line(17, "      hydraulic: {van_genuchten: {s_min: 0.5, s_max: 0.5, lambda: 0.4, "
+                                  "p_ref: 1e4}}"),
+               {"materials[0].soil.hydraulic.van_genuchten.s_min", 17, "s_min must be less than s_max"});
+  expect_error(soil_with_line(17, "      hydraulic: {gardner: {s_min: 0.8, s_max: 0.3, alpha: 2}}"),
+               {"materials[0].soil.hydraulic.gardner.s_min", 17, "s_min must be less than s_max"});
+  expect_error(soil_with_line(17, "      hydraulic: {gardner: {s_min: 0.2, s_max: 1.2, alpha: 2}}"),
+               {"materials[0].soil.hydraulic.gardner.s_max", 17, "s_max must be <= 1"});
+  expect_error(soil_with_line(17, "      hydraulic: {gardner: {s_min: -0.1, alpha: 2}}"),
+               {"materials[0].soil.hydraulic.gardner.s_min", 17, "s_min must be >= 0"});
+  expect_error(soil_with_line(17, "      hydraulic: {van_genuchten: {s_min: 0.1, lambda: 1, p_ref: 1e4}}"),
+               {"materials[0].soil.hydraulic.van_genuchten.lambda", 17, "lambda must be in (0, 1)"});
+  expect_error(soil_with_line(17, "      hydraulic: {van_genuchten: {s_min: 0.1, lambda: 0.5}}"),
+               {"materials[0].soil.hydraulic.van_genuchten.p_ref", 17, "p_ref must be a finite number > 0"});
+  expect_error(soil_with_line(17, "      hydraulic: {gardner: {s_min: 0.1, alpha: 0}}"),
+               {"materials[0].soil.hydraulic.gardner.alpha", 17, "alpha must be a finite number > 0"});
+  // The suction head needs gravity: γ_w = ρ_w0 |g| is the model's unit weight.
+  std::vector<std::string> lines = kSoilBase;
+  lines[8] = "gravity: [0, 0]";
+  lines[16] = "      hydraulic: {gardner: {s_min: 0.1, alpha: 2}}";
+  expect_error(join(lines), {"materials[0].soil.hydraulic.gardner", 17, "the case needs gravity"});
+  lines[16] = "      hydraulic: {liakopoulos: {}}";
+  expect_error(join(lines), {"materials[0].soil.hydraulic.liakopoulos", 17, "unit_weight must be"});
+}
+
+TEST(SoilErrors, UnknownOrMissingModels) {
+  expect_error(soil_with_line(17, "      hydraulic: {brooks_corey: {lambda: 0.5}}"),
+               {"materials[0].soil.hydraulic.brooks_corey", 17, "unknown key (known here: van_genuchten, gardner"});
+  expect_error(soil_with_line(18, "      mechanical: {cam_clay: {}}"),
+               {"materials[0].soil.mechanical.cam_clay", 18, "unknown key (known here: linear_elastic"});
+  expect_error(soil_with_line(17, "      hydraulic: {gardner: {s_min: 0.1, alpha: 2}, liakopoulos: {}}"),
+               {"materials[0].soil.hydraulic.liakopoulos", 17, "cannot be given together with 'gardner'"});
+  expect_error(soil_without_lines(17, 17), {"materials[0].soil.hydraulic", 12, "has no model"});
+  expect_error(soil_with_line(17, "      hydraulic: {}"), {"materials[0].soil.hydraulic", 17, "has no model"});
+  expect_error(soil_without_lines(18, 18),
+               {"materials[0].soil.mechanical", 12, "only a rigid soil may leave it out"});
+}
+
+TEST(SoilErrors, NotANumber) {
+  // From a file: YAML's .nan is refused where it is read.
+  expect_error(soil_with_line(14, "      porosity: .nan"),
+               {"materials[0].soil.porosity", 14, "expected a finite number"});
+  expect_error(soil_with_line(27, "    initial: {water_table: .inf}"),
+               {"bodies[1].initial.water_table", 27, "expected a finite number"});
+  // Over the API: validate_spec finds NaN in every soil field it checks.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const pb::ScenarioSpec good = load_case_text(soil_base());
+  const struct {
+    std::function<void(pb::ScenarioSpec&)> set;
+    std::string key;
+  } cases[] = {
+      {[&](pb::ScenarioSpec& s) { s.mutable_materials(0)->mutable_soil()->set_porosity(nan); },
+       "materials[0].soil.porosity"},
+      {[&](pb::ScenarioSpec& s) { s.mutable_materials(0)->mutable_soil()->set_saturated_conductivity(nan); },
+       "materials[0].soil.saturated_conductivity"},
+      {[&](pb::ScenarioSpec& s) { s.mutable_materials(0)->mutable_soil()->set_grain_density(nan); },
+       "materials[0].soil.grain_density"},
+      {[&](pb::ScenarioSpec& s) { s.mutable_materials(0)->mutable_soil()->set_water_bulk_modulus(nan); },
+       "materials[0].soil.water_bulk_modulus"},
+      {[&](pb::ScenarioSpec& s) {
+         s.mutable_materials(0)->mutable_soil()->mutable_hydraulic()->mutable_van_genuchten()->set_lambda(nan);
+       },
+       "materials[0].soil.hydraulic.van_genuchten.lambda"},
+      {[&](pb::ScenarioSpec& s) {
+         s.mutable_materials(0)->mutable_soil()->mutable_mechanical()->mutable_drucker_prager()->set_friction_angle(
+             nan);
+       },
+       "materials[0].soil.mechanical.drucker_prager.friction_angle"},
+      {[&](pb::ScenarioSpec& s) {
+         s.mutable_materials(0)->mutable_soil()->mutable_mechanical()->mutable_drucker_prager()->set_cohesion(nan);
+       },
+       "materials[0].soil.mechanical.drucker_prager.cohesion"},
+      {[&](pb::ScenarioSpec& s) { s.mutable_bodies(1)->mutable_initial()->set_water_table(nan); },
+       "bodies[1].initial.water_table"},
+      {[&](pb::ScenarioSpec& s) { s.mutable_bodies(1)->mutable_initial()->set_k0(nan); }, "bodies[1].initial.k0"},
+      {[&](pb::ScenarioSpec& s) { s.mutable_hydraulics()->set_rainfall_intensity(nan); },
+       "hydraulics.rainfall_intensity"},
+      {[&](pb::ScenarioSpec& s) { s.mutable_hydraulics()->set_ponding_pressure(nan); }, "hydraulics.ponding_pressure"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.key);
+    pb::ScenarioSpec spec = good;
+    c.set(spec);
+    try {
+      validate_spec(spec);
+      ADD_FAILURE() << "NaN accepted";
+    } catch (const CaseError& e) {
+      EXPECT_EQ(e.key(), c.key) << e.what();
+    }
+  }
+}
+
+TEST(SoilErrors, SoilBodyIn3dCaseWith2dShape) {
+  const std::string text =
+      "dimensions: 3\ndp: 0.05\nend_time: 1\n"                                                  // 1-3
+      "domain: {min: [0, 0, 0], max: [1, 1, 1]}\n"                                              // 4
+      "gravity: [0, 0, -9.81]\n"                                                                // 5
+      "materials:\n"                                                                            // 6
+      "  - {name: sand, soil: {grain_density: 2650, porosity: 0.3, saturated_conductivity: 1e-3, rigid: true, "
+      "hydraulic: {liakopoulos: {}}}}\n"                                                        // 7
+      "bodies:\n"                                                                               // 8
+      "  - name: slope\n"                                                                       // 9
+      "    kind: fluid\n"                                                                       // 10
+      "    material: sand\n"                                                                    // 11
+      "    shape: {polygon: {vertices: [[0, 0], [1, 0], [0, 0.5]]}}\n";                         // 12
+  expect_error(text, {"bodies[0].shape.polygon", 12, "is a 2D shape; a 3D case uses extruded_polygon"});
+}
+
+TEST(SoilErrors, InitialState) {
+  expect_error(soil_with_line(27, "    initial: {suction: -10}"),
+               {"bodies[1].initial.suction", 27, "must be greater than 0"});
+  expect_error(soil_with_line(27, "    initial: {suction: 3e6}"),
+               {"bodies[1].initial.suction", 27, "must be below the pore water's bulk modulus"});
+  expect_error(soil_with_line(27, "    initial: {suction: 1e4, water_table: 0.5}"),
+               {"bodies[1].initial.water_table", 27, "cannot be given together with 'suction'"});
+  expect_error(soil_with_line(27, "    initial: {water_table: 0.5, k0: -0.5}"),
+               {"bodies[1].initial.k0", 27, "must not be negative"});
+  expect_error(soil_with_line(27, "    initial: {hydrostatic: true}"),
+               {"bodies[1].initial.hydrostatic", 27, "is for water bodies"});
+  expect_error(soil_with_line(9, "gravity: [1, -9.81]"), {"gravity", 9, "must point along -z"});
+  // A rigid soil does not move.
+  std::vector<std::string> lines = kSoilBase;
+  lines[17] = "      rigid: true";
+  lines[26] = "    initial: {velocity: [0, -1]}";
+  expect_error(join(lines), {"bodies[1].initial.velocity", 27, "a rigid soil does not move"});
+  // The soil state on a water body or a boundary.
+  expect_error(with_line(22, "    initial: {water_table: 0.5}"),
+               {"bodies[1].initial.water_table", 22, "is for soil bodies"});
+  expect_error(with_line(22, "    initial: {k0: 0.5}"), {"bodies[1].initial.k0", 22, "is for soil bodies"});
+  expect_error(soil_with_line(22, "    shape: {box: {min: [0, -0.08], max: [0.24, 0]}}\n    initial: {suction: 10}"),
+               {"bodies[0].initial", 23, "has no initial state"});
+}
+
+TEST(SoilErrors, Hydraulics) {
+  expect_error(soil_with_line(29, "  rainfall_intensity: 1e-5\n  rainfall: [{time: 0, intensity: 1e-5}]"),
+               {"hydraulics.rainfall", 30, "cannot be given together with rainfall_intensity"});
+  expect_error(soil_with_line(29, "  rainfall: [{time: 10, intensity: 1e-5}, {time: 10, intensity: 0}]"),
+               {"hydraulics.rainfall[1].time", 29, "must be later than the time of the point before"});
+  expect_error(soil_with_line(29, "  rainfall: [{time: -1, intensity: 1e-5}]"),
+               {"hydraulics.rainfall[0].time", 29, "must not be negative"});
+  expect_error(soil_with_line(29, "  drying_pressure: 0"),
+               {"hydraulics.drying_pressure", 29, "must be below ponding_pressure"});
+  expect_error(soil_with_line(29, "  drying_pressure: -3e6"),
+               {"hydraulics.drying_pressure", 29, "must be above -K_w = -2000000 Pa"});
+  expect_error(soil_with_line(29, "  region: {min: [0, 1], max: [0.24, 0.5]}"),
+               {"hydraulics.region.max", 29, "must be greater than hydraulics.region.min on axis z"});
+  expect_error(soil_with_line(29, "  region: {min: [0], max: [0.24, 0.5]}"),
+               {"hydraulics.region.min", 29, "has 1 component"});
+  expect_error(base() + "hydraulics: {rainfall_intensity: 1e-5}\n",
+               {"hydraulics", 26, "the case has no soil material"});
+}
+
+TEST(SoilErrors, SoilProbes) {
+  expect_error(soil_with_line(32, "  - {name: p, kind: point, field: saturation, position: [0.12, 0.5]}"),
+               {"probes[0].phase", 32, "'saturation' is a field of soil particles: give phase: soil"});
+  expect_error(soil_with_line(32, "  - {name: p, kind: max, field: seepage_y, phase: soil}"),
+               {"probes[0].field", 32, "'seepage_y' is not a field"});
+  expect_error(soil_with_line(32, "  - {name: p, kind: max, field: suction, phase: soil}"),
+               {"probes[0].field", 32, "'suction' is not a field"});
+  // Every field the probe sampler is getting is accepted.
+  for (const char* field :
+       {"pore_pressure", "saturation", "porosity", "plastic_strain", "seepage_x", "seepage_z", "displacement_x",
+        "displacement_z", "stress_xx", "stress_yy", "stress_zz", "stress_xy", "stress_yz", "stress_zx",
+        "effective_stress_xx", "effective_stress_yy", "effective_stress_zz", "effective_stress_xy",
+        "effective_stress_yz", "effective_stress_zx", "free_surface"}) {
+    SCOPED_TRACE(field);
+    EXPECT_NO_THROW(load_case_text(
+        soil_with_line(32, std::string("  - {name: p, kind: mean, phase: soil, field: ") + field + "}")));
+  }
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // Scenario → initial particles: lattice fill of fluid bodies, dummy layers of solid boundaries and
-// their ghost nodes (paper Section 3.3.1), hydrostatic start, Eq. 24a sound speed, case errors.
+// their ghost nodes (paper Section 3.3.1), hydrostatic start, Eq. 24a sound speed, case errors;
+// soil bodies: porosity, pore pressure, geostatic stress, wetted walls, engine set-up.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,8 +10,11 @@
 
 #include "cascade/v1/scenario.pb.h"
 #include "server/scenario/case_error.h"
+#include "server/scenario/case_loader.h"
+#include "server/scenario/engine_setup.h"
 #include "server/scenario/geometry.h"
 #include "server/scenario/particle_builder.h"
+#include "server/scenario/soil_setup.h"
 
 namespace cascade {
 namespace {
@@ -454,6 +458,271 @@ TEST(Geometry, RegionSurfaceOfATankAndClosestPoints) {
   EXPECT_LT((tri.closest_point(Vec3(0.2, 0.2, 3)) - Vec3(0.2, 0.2, 0)).norm(), 1e-15);
   EXPECT_LT((tri.closest_point(Vec3(1, 1, -1)) - Vec3(0.5, 0.5, 0)).norm(), 1e-15);
   EXPECT_LT((tri.closest_point(Vec3(-1, -2, 0)) - Vec3(0, 0, 0)).norm(), 1e-15);
+}
+
+// --- Soil bodies ----------------------------------------------------------------------------------
+
+constexpr double kG = 9.81;
+constexpr double kRho = 1000.0;
+
+// Table 2's soil as a material of `s`: van Genuchten (S_min 0.3, λ 0.447, p_ref 19357 Pa); linear
+// elastic E = 50 MPa, ν = 0.3 unless `rigid`.
+void add_soil_material(ScenarioSpec& s, const std::string& name, bool rigid, double bulk_modulus = 2e6) {
+  auto* m = s.add_materials();
+  m->set_name(name);
+  auto* soil = m->mutable_soil();
+  soil->set_grain_density(2650);
+  soil->set_porosity(0.3);
+  soil->set_saturated_conductivity(1e-3);
+  soil->set_water_bulk_modulus(bulk_modulus);
+  auto* vg = soil->mutable_hydraulic()->mutable_van_genuchten();
+  vg->set_s_min(0.3);
+  vg->set_s_max(1.0);
+  vg->set_lambda(0.447);
+  vg->set_p_ref(19357);
+  soil->set_rigid(rigid);
+  if (!rigid) {
+    soil->mutable_mechanical()->mutable_linear_elastic()->set_youngs_modulus(50e6);
+    soil->mutable_mechanical()->mutable_linear_elastic()->set_poisson_ratio(0.3);
+  }
+}
+
+// Eq. 14 (ERRATA.md) written out here, apart from the model's code.
+double table2_saturation(double p_c) {
+  if (p_c <= 0) return 1.0;
+  return 0.3 + 0.7 * std::pow(1.0 + std::pow(p_c / 19357.0, 1.0 / (1.0 - 0.447)), -0.447);
+}
+
+// A soil-only 2D case: no water material, gravity -z.
+ScenarioSpec soil_case(double dp, double h_over_dp) {
+  ScenarioSpec s;
+  s.set_name("soil");
+  s.set_dimensions(2);
+  s.set_dp(dp);
+  s.set_h_over_dp(h_over_dp);
+  s.set_end_time(1.0);
+  s.add_gravity(0.0);
+  s.add_gravity(-kG);
+  return s;
+}
+
+// Every particle has the soil fields: zeros except for soil particles.
+void expect_soil_fields_sized(const HostParticles& p) {
+  ASSERT_EQ(p.porosity.size(), p.size());
+  ASSERT_EQ(p.soil_material.size(), p.size());
+  ASSERT_EQ(p.effective_stress.size(), 6 * p.size());
+  for (std::size_t n = 0; n < p.size(); ++n) {
+    if (p.phase[n] == Phase::soil) continue;
+    EXPECT_EQ(p.porosity[n], 0.0);
+    for (int c = 0; c < 6; ++c) EXPECT_EQ(p.effective_stress[6 * n + c], 0.0);
+  }
+}
+
+TEST(SoilBuilder, InfiltrationColumnCountsPorePressureAndGeostaticStress) {
+  const ScenarioSpec spec = load_case_file(std::string(CASCADE_SOURCE_DIR) + "/cases/infiltration_1d.yaml");
+  const ParticleSet set = build_particle_set(spec);
+  const HostParticles& p = set.particles;
+  // 12 columns of 150 soil particles on 4 dummy layers (2h = 3.6 dp); the base's bottom lies on
+  // the domain's edge and its sides meet their periodic images: only its top is wetted.
+  EXPECT_EQ(p.count(Phase::soil), 12u * 150u);
+  EXPECT_EQ(p.count(Phase::boundary), 12u * 4u);
+  EXPECT_EQ(p.count(Phase::water), 0u);
+  EXPECT_NEAR(set.bodies[0].wetted_surface, 0.24, 1e-12);
+  expect_soil_fields_sized(p);
+
+  const double phi = 0.4, rho_s = 2650, kw = 2e6;
+  std::size_t checked = 0;
+  for (std::size_t n = 0; n < p.size(); ++n) {
+    if (p.phase[n] == Phase::boundary) {
+      EXPECT_EQ(p.water_density[n], kRho);
+      continue;
+    }
+    ASSERT_EQ(p.phase[n], Phase::soil);
+    const double z = at(p, p.position, n).z();
+    EXPECT_EQ(p.porosity[n], phi);
+    EXPECT_EQ(p.soil_material[n], 0);
+    // Water table at z = 0: p_w = -ρ_w0 g z (Section 4.1), as the pore-water density of Eq. 36b.
+    const double p_w = -kRho * kG * z;
+    EXPECT_NEAR(p.water_density[n], kRho * (1 + p_w / kw), 1e-9);
+    // Geostatic stress by hand: Gardner's S_w = 0.23 + 0.77 exp(-2 z) integrates in closed form,
+    // σ_zz = -g ∫_z^3 [(1 - φ) ρ_s + φ ρ_w0 S_w] dz'; σ' = σ_zz + S_w p_w (Eq. 7); rigid: K0 = 1.
+    const double depth = 3.0 - z;
+    const double total =
+        -kG * ((1 - phi) * rho_s * depth + phi * kRho * (0.23 * depth + 0.385 * (std::exp(-2 * z) - std::exp(-6.0))));
+    const double effective = total + (0.23 + 0.77 * std::exp(-2 * z)) * p_w;
+    const double* stress = &p.effective_stress[6 * n];
+    EXPECT_NEAR(stress[2], effective, 1e-9 * std::abs(effective) + 1e-9) << "z = " << z;
+    EXPECT_NEAR(stress[0], effective, 1e-9 * std::abs(effective) + 1e-9);
+    EXPECT_NEAR(stress[1], effective, 1e-9 * std::abs(effective) + 1e-9);
+    for (int c = 3; c < 6; ++c) EXPECT_EQ(stress[c], 0.0);
+    if (std::abs(z - 1.01) < 1e-9) ++checked;
+  }
+  EXPECT_EQ(checked, 12u);  // one depth in every column
+  // At z = 1.01 m, worked out by hand: σ_zz = -33.03 kPa, S_w p_w = 0.3322 × (-9.908 kPa) =
+  // -3.29 kPa, so σ'_zz = -36.32 kPa.
+  const long n = find(p, Vec3(0.13, 0, 1.01), Phase::soil, 0.02);
+  ASSERT_GE(n, 0);
+  EXPECT_NEAR(p.effective_stress[6 * n + 2], -36323.4, 0.1);
+}
+
+TEST(SoilBuilder, SubmergedSoilCarriesItsBuoyantWeight) {
+  // Soil 0.5 m deep under water standing to z = 0.8: water table at the water surface. The
+  // effective stress is the buoyant weight, -(ρ_sat - ρ_w0) g (0.5 - z), K0 = ν/(1 - ν).
+  ScenarioSpec s = base_case(2, 0.02, 1.8);
+  add_soil_material(s, "sand", false);
+  set_domain(s, {0, -0.08}, {0.24, 1.0});
+  for (bool periodic : {true, false}) s.mutable_domain()->add_periodic(periodic);
+  set_box(add_body(s, "base", v1::BOUNDARY)->mutable_shape(), {0, -0.08}, {0.24, 0});
+  auto* soil = add_body(s, "bed", v1::FLUID);
+  soil->set_material("sand");
+  set_box(soil->mutable_shape(), {0, 0}, {0.24, 0.5});
+  soil->mutable_initial()->set_water_table(0.8);
+  auto* water = add_body(s, "sea", v1::FLUID);  // after the soil: fills the box above it only
+  set_box(water->mutable_shape(), {0, 0}, {0.24, 0.8});
+  water->mutable_initial()->set_hydrostatic(true);
+  const ParticleSet set = build_particle_set(s);
+  const HostParticles& p = set.particles;
+  EXPECT_EQ(p.count(Phase::soil), 12u * 25u);
+  EXPECT_EQ(p.count(Phase::water), 12u * 15u);
+  EXPECT_EQ(p.count(Phase::boundary), 12u * 4u);
+  expect_soil_fields_sized(p);
+  const double rho_sat = 0.7 * 2650 + 0.3 * kRho, k0 = 0.3 / 0.7;
+  for (std::size_t n = 0; n < p.size(); ++n) {
+    const double z = at(p, p.position, n).z();
+    if (p.phase[n] == Phase::water) EXPECT_GT(z, 0.5);
+    if (p.phase[n] != Phase::soil) continue;
+    EXPECT_NEAR(p.water_density[n], kRho * (1 + kRho * kG * (0.8 - z) / 2e6), 1e-9);
+    const double buoyant = -(rho_sat - kRho) * kG * (0.5 - z);
+    EXPECT_NEAR(p.effective_stress[6 * n + 2], buoyant, 1e-8) << "z = " << z;
+    EXPECT_NEAR(p.effective_stress[6 * n + 0], k0 * buoyant, 1e-8);
+    EXPECT_NEAR(p.effective_stress[6 * n + 1], k0 * buoyant, 1e-8);
+  }
+  // k0 given: it replaces ν/(1 - ν).
+  s.mutable_bodies(1)->mutable_initial()->set_k0(0.8);
+  const HostParticles q = build_particles(s);
+  const long n = find(q, Vec3(0.05, 0, 0.25), Phase::soil, 0.02);
+  ASSERT_GE(n, 0);
+  EXPECT_NEAR(q.effective_stress[6 * n + 0], 0.8 * q.effective_stress[6 * n + 2], 1e-9);
+}
+
+TEST(SoilBuilder, StressFromEachColumnsOwnTop) {
+  // An L-shaped soil body (tall at x < 0.12, low beyond) at a uniform suction of 10 kPa: the
+  // vertical stress of a particle is the weight of its own column, σ_zz = -ρ_s g (z_top - z).
+  ScenarioSpec s = soil_case(0.02, 1.5);
+  add_soil_material(s, "sand", true);
+  set_domain(s, {0, 0}, {0.24, 0.6});
+  auto* b = add_body(s, "step", v1::FLUID);
+  b->set_material("sand");
+  auto* poly = b->mutable_shape()->mutable_polygon();
+  for (auto [x, z] : std::vector<std::pair<double, double>>{{0, 0}, {0.24, 0}, {0.24, 0.3}, {0.12, 0.3}, {0.12, 0.5},
+                                                           {0, 0.5}}) {
+    auto* v = poly->add_vertices();
+    v->set_x(x);
+    v->set_z(z);
+  }
+  b->mutable_initial()->set_suction(1e4);
+  const HostParticles p = build_particles(s);
+  EXPECT_EQ(p.count(Phase::soil), 6u * 25u + 6u * 15u);
+  const double s_w = table2_saturation(1e4);
+  const double rho_mix = 0.7 * 2650 + s_w * 0.3 * kRho;  // Eq. 28a with ρ_w0 = 1000 (no water material)
+  for (auto [x, top] : std::vector<std::pair<double, double>>{{0.05, 0.5}, {0.17, 0.3}}) {
+    const long n = find(p, Vec3(x, 0, 0.09), Phase::soil, 0.02);
+    ASSERT_GE(n, 0);
+    const double effective = -rho_mix * kG * (top - 0.09) + s_w * -1e4;
+    EXPECT_NEAR(p.effective_stress[6 * n + 2], effective, 1e-8 * std::abs(effective)) << "x = " << x;
+    EXPECT_NEAR(p.effective_stress[6 * n + 0], effective, 1e-8 * std::abs(effective));  // rigid: K0 = 1
+    EXPECT_NEAR(p.water_density[n], kRho * (1 - 1e4 / 2e6), 1e-12);
+  }
+}
+
+TEST(SoilBuilder, SoilIsWettedLikeWater) {
+  // The tank of TankWaterAndDummyCountsAreExact with soil for water: the same dummy layers.
+  ScenarioSpec s = tank_2d(1.3);
+  add_soil_material(s, "sand", false);
+  s.mutable_bodies(1)->set_material("sand");
+  const HostParticles p = build_particles(s);
+  EXPECT_EQ(p.count(Phase::soil), 50u * 25u);
+  EXPECT_EQ(p.count(Phase::water), 0u);
+  EXPECT_EQ(p.count(Phase::boundary), 2u * 3u * 35u + 3u * 50u + 2u * 8u);
+  for (std::size_t n = 0; n < p.size(); ++n)
+    if (p.phase[n] == Phase::soil) EXPECT_EQ(p.soil_material[n], 0);  // the only soil, though materials[1]
+}
+
+TEST(SoilBuilder, SoilMaterialIndexCountsSoilsOnly) {
+  ScenarioSpec s = soil_case(0.1, 1.3);
+  add_soil_material(s, "clay", true);
+  s.add_materials()->set_name("water");
+  s.mutable_materials(1)->mutable_water();
+  add_soil_material(s, "sand", true);
+  set_domain(s, {0, 0}, {1, 1});
+  auto* lower = add_body(s, "lower", v1::FLUID);
+  lower->set_material("sand");
+  set_box(lower->mutable_shape(), {0, 0}, {1, 0.5});
+  auto* upper = add_body(s, "upper", v1::FLUID);
+  upper->set_material("clay");
+  set_box(upper->mutable_shape(), {0, 0.5}, {1, 1});
+  const ParticleSet set = build_particle_set(s);
+  for (std::size_t n = 0; n < set.particles.size(); ++n)
+    EXPECT_EQ(set.particles.soil_material[n], n < set.bodies[1].first ? 1 : 0);  // sand is soils[1]
+}
+
+TEST(SoilBuilder, PorePressureBelowMinusKwIsACaseError) {
+  ScenarioSpec s = soil_case(0.02, 1.3);
+  add_soil_material(s, "sand", true, 2e5);
+  set_domain(s, {0, 0}, {0.5, 1});
+  auto* b = add_body(s, "dry", v1::FLUID);
+  b->set_material("sand");
+  set_box(b->mutable_shape(), {0, 0}, {0.5, 0.5});
+  b->mutable_initial()->set_water_table(-25);  // p_w = -255 kPa at the top: below -K_w = -200 kPa
+  EXPECT_EQ(error_key(s), "bodies[0].initial.water_table");
+  b->mutable_initial()->set_water_table(-15);
+  EXPECT_EQ(error_key(s), "(no error)");
+}
+
+TEST(SoilBuilder, EngineConfigOfSoilCases) {
+  // Soil only: ρ_w0 = 1000, no free water (c_w0 = 0), one SoilMaterial, the forcing at t = 0.
+  ScenarioSpec s = soil_case(0.02, 1.3);
+  add_soil_material(s, "sand", false, 5e5);
+  set_domain(s, {0, 0}, {0.5, 1});
+  auto* b = add_body(s, "column", v1::FLUID);
+  b->set_material("sand");
+  set_box(b->mutable_shape(), {0, 0}, {0.5, 0.5});
+  auto* rain = s.mutable_hydraulics()->add_rainfall();
+  rain->set_time(0);
+  rain->set_intensity(3e-6);
+  s.mutable_hydraulics()->add_rainfall()->set_time(100);
+  s.mutable_hydraulics()->set_drying_pressure(-1e4);
+  const HostParticles p = build_particles(s);
+  EngineConfig c = engine_config(s, p, Precision::double_precision);
+  EXPECT_DOUBLE_EQ(c.water_density, 1000);
+  EXPECT_DOUBLE_EQ(c.sound_speed, 0);
+  ASSERT_EQ(c.soils.size(), 1u);
+  EXPECT_DOUBLE_EQ(c.soils[0].water_bulk_modulus, 5e5);
+  EXPECT_DOUBLE_EQ(c.soils[0].grain_density, 2650);
+  EXPECT_DOUBLE_EQ(c.soils[0].mechanical.youngs_modulus, 50e6);
+  EXPECT_DOUBLE_EQ(c.forcing.rainfall_intensity, 3e-6);
+  EXPECT_DOUBLE_EQ(c.forcing.ponding_pressure, 0);
+  EXPECT_DOUBLE_EQ(c.forcing.drying_pressure, -1e4);
+  EXPECT_FALSE(c.forcing.has_region);
+  EXPECT_DOUBLE_EQ(hydraulic_forcing(s, 100).rainfall_intensity, 0);
+
+  // With water: ρ_w0 and c_w0 are the water's.
+  ScenarioSpec w = s;
+  auto* water = w.add_materials();
+  water->set_name("water");
+  water->mutable_water()->set_density(1025);
+  water->mutable_water()->set_sound_speed(20);
+  auto* pool = add_body(w, "pool", v1::FLUID);
+  set_box(pool->mutable_shape(), {0, 0.5}, {0.5, 0.7});
+  c = engine_config(w, build_particles(w), Precision::double_precision);
+  EXPECT_DOUBLE_EQ(c.water_density, 1025);
+  EXPECT_DOUBLE_EQ(c.sound_speed, 20);
+  EXPECT_EQ(c.soils.size(), 1u);
+
+  // Neither water nor soil.
+  ScenarioSpec none = s;
+  none.mutable_materials(0)->clear_soil();
+  EXPECT_THROW(engine_config(none, p, Precision::double_precision), CaseError);
 }
 
 }  // namespace
