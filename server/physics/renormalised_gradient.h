@@ -63,7 +63,10 @@ struct RenormalisedDensityGradient {
       const std::uint32_t j = list[k];
       const Vec<Real, Dim> x_ij = grid.displacement(x_i, gather(p.position, j));
       // Zero beyond the support 2h.
-      const Real same_medium = (j >= other_begin) & (j < other_end) ? Real(0) : Real(1);
+      bool other_medium;
+      if constexpr (PoreWater) other_medium = j < other_end;  // other_begin is 0
+      else other_medium = (j >= other_begin) & (j < other_end);
+      const Real same_medium = other_medium ? Real(0) : Real(1);
       const Real volume = same_medium * sph.mass / p.density[j];
       const Vec<Real, Dim> grad_w = sph.kernel.gradient_factor(std::sqrt(x_ij.squaredNorm())) * x_ij;
       Real rho_w_j = p.water_density[j];
