@@ -7,13 +7,10 @@
 //
 // Counters: particles, particle_steps_per_second, bytes_per_particle (device memory of the
 // particle and grid arrays over the particle count), steps.
-#include <benchmark/benchmark.h>
-#include <omp.h>
-
 #include <cmath>
 #include <string>
 
-#include "server/core/engine.h"
+#include "bench/engine_bench.h"
 #include "server/scenario/case_loader.h"
 #include "server/scenario/engine_setup.h"
 #include "server/scenario/particle_builder.h"
@@ -22,49 +19,24 @@ namespace {
 
 using cascade::Precision;
 
-void dam_break_3d(benchmark::State& state, double dp, Precision precision, int threads) {
-  omp_set_num_threads(threads);
+void dam_break_3d(benchmark::State& state, double dp, Precision precision) {
   const auto spec = cascade::load_case_file(std::string(CASCADE_SOURCE_DIR) + "/cases/dam_break_3d.yaml",
                                             {cascade::parse_override("dp=" + std::to_string(dp))});
   const auto particles = cascade::build_particles(spec);
   const auto config = cascade::engine_config(spec, particles, precision);
   auto engine = cascade::make_engine(config, particles);
-  for (int k = 0; k < (dp < 0.008 ? 5 : 20); ++k) engine->step();
-  const std::uint64_t first = engine->step_count();
-  for (auto _ : state) engine->step();
-  const double steps = double(engine->step_count() - first);
-  const double n = double(engine->particle_count());
-  state.counters["particles"] = n;
-  state.counters["steps"] = steps;
-  state.counters["particle_steps_per_second"] = benchmark::Counter(n * steps, benchmark::Counter::kIsRate);
-  state.counters["bytes_per_particle"] = double(engine->device_bytes()) / n;
+  cascade::bench::time_steps(state, *engine, dp < 0.008 ? 5 : 20);
   state.counters["water"] = double(particles.count(cascade::Phase::water));
   state.counters["sim_time_per_step"] = engine->time() / double(engine->step_count());
 }
 
-// dp giving about 1.4·10⁴, 0.9·10⁵, 2·10⁵ (the 0.0103 of the performance target) and 10⁶ particles
-// in all, water and dummy particles.
-void register_all() {
-  for (double dp : {0.0315, 0.0145, 0.0103, 0.0054})
-    for (Precision p : {Precision::single_precision, Precision::double_precision})
-      for (int threads : {1, 2}) {
-        const std::string name = std::string("DamBreak3D/dp:") + std::to_string(dp).substr(0, 6) +
-                                 (p == Precision::single_precision ? "/float" : "/double") +
-                                 "/threads:" + std::to_string(threads);
-        benchmark::RegisterBenchmark(name.c_str(), dam_break_3d, dp, p, threads)
-            ->Unit(benchmark::kMillisecond)
-            ->MinTime(dp < 0.008 ? 10.0 : 5.0)
-            ->UseRealTime();
-      }
-}
-
 }  // namespace
 
+// dp giving about 1.4·10⁴, 0.9·10⁵, 2·10⁵ (the 0.0103 of the performance target) and 10⁶ particles
+// in all, water and dummy particles.
 int main(int argc, char** argv) {
-  register_all();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  cascade::bench::register_sizes<double>(
+      "DamBreak3D", {0.0315, 0.0145, 0.0103, 0.0054},
+      [](const double& dp) { return "dp:" + std::to_string(dp).substr(0, 6); }, 3, 5.0, dam_break_3d);
+  return cascade::bench::run_benchmarks(argc, argv);
 }
