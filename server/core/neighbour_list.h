@@ -85,12 +85,13 @@ class NeighbourList {
   using Vector = typename Backend::template Vector<T>;
 
  public:
-  // Slots for a list: the lattice points within the list radius, times 1.5 for compressed water.
+  // Slots for a list: the lattice points within the list radius, times 1.25 for compressed or
+  // disordered particles; a fuller list makes build() retry with room for it.
   NeighbourList(double h_over_dp) {
     const double radius = 2.0 * kListRadius * h_over_dp;
     constexpr double pi = 3.14159265358979323846;
     const double lattice = Dim == 2 ? pi * radius * radius : 4.0 / 3.0 * pi * radius * radius * radius;
-    capacity_ = std::uint32_t(std::ceil(1.5 * lattice / 8.0) * 8.0);
+    capacity_ = std::uint32_t(std::ceil(1.25 * lattice / 8.0) * 8.0);
   }
 
   // Builds the lists of the first `moving` particles, the moving ones (sorted by cell; `grid`

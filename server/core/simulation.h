@@ -74,9 +74,7 @@ class Simulation final : public Engine {
       v->assign(n, Real(0));
     for (auto* v : {&acceleration_, &water_density_gradient_, &start_position_, &start_velocity_, &listed_position_})
       v->assign(n, V::Zero());
-    scratch_vec_.resize(n);
     ghost_wet_.resize(n);
-    scratch_real_.resize(n);
     scratch_phase_.resize(n);
     scratch_index_.resize(n);
     set_up_soil(host);
@@ -122,13 +120,13 @@ class Simulation final : public Engine {
     std::size_t bytes = 0;
     auto add = [&](const auto& v) { bytes += v.capacity() * sizeof(typename std::decay_t<decltype(v)>::value_type); };
     add(position_), add(velocity_), add(ghost_), add(acceleration_), add(water_density_gradient_);
-    add(start_position_), add(start_velocity_), add(listed_position_), add(scratch_vec_);
+    add(start_position_), add(start_velocity_), add(listed_position_);
     add(density_), add(water_density_), add(pressure_), add(density_rate_), add(water_density_rate_);
-    add(step_limit_), add(start_density_), add(start_water_density_), add(scratch_real_);
+    add(step_limit_), add(start_density_), add(start_water_density_);
     add(phase_), add(scratch_phase_), add(ghost_wet_), add(id_), add(scratch_index_);
-    add(soil_materials_), add(soil_material_), add(free_surface_), add(surface_state_), add(scratch_byte_);
-    add(porosity_), add(saturation_), add(pore_pressure_), add(seepage_), add(pressure_gradient_);
-    add(boundary_velocity_), add(effective_stress_), add(total_stress_), add(start_stress_), add(scratch_voigt_);
+    add(soil_materials_), add(soil_material_), add(free_surface_), add(surface_state_);
+    add(porosity_), add(saturation_), add(seepage_), add(pressure_gradient_), add(effective_stress_), add(start_stress_);
+    add(dummy_pore_pressure_), add(dummy_stress_), add(dummy_velocity_);
     add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
     return bytes + cells_.bytes() + neighbours_.bytes();
   }
@@ -245,22 +243,32 @@ class Simulation final : public Engine {
   // list each moving particle's neighbours for the rate evaluations of this and later steps.
   void sort_by_cell() {
     cells_.sort(position_, phase_);
-    cells_.reorder(position_, scratch_vec_);
-    cells_.reorder(velocity_, scratch_vec_);
-    cells_.reorder(ghost_, scratch_vec_);
-    cells_.reorder(density_, scratch_real_);
-    cells_.reorder(water_density_, scratch_real_);
+    // The step-start copies and the wet flags are free while the sort runs (save_step_start and
+    // the first evaluation write them after it): they serve as the gathers' scratch.
+    cells_.reorder(position_, start_position_);
+    cells_.reorder(velocity_, start_position_);
+    cells_.reorder(ghost_, start_position_);
+    cells_.reorder(density_, start_density_);
+    cells_.reorder(water_density_, start_density_);
     cells_.reorder(phase_, scratch_phase_);
     cells_.reorder(id_, scratch_index_);
     if (has_soil_) {
       // Carried from step to step: the material, the porosity, the surface state and the last
       // seepage discharge that decides it (pore_water_state.h). The rest is recomputed.
-      cells_.reorder(soil_material_, scratch_byte_);
-      cells_.reorder(surface_state_, scratch_byte_);
-      cells_.reorder(porosity_, scratch_real_);
-      cells_.reorder(plastic_strain_, scratch_real_);
-      cells_.reorder(seepage_, scratch_vec_);
-      cells_.reorder(effective_stress_, scratch_voigt_);
+      cells_.reorder(soil_material_, ghost_wet_);
+      cells_.reorder(surface_state_, ghost_wet_);
+      cells_.reorder(porosity_, start_density_);
+      cells_.reorder(plastic_strain_, start_density_);
+      cells_.reorder(seepage_, start_position_);
+      cells_.reorder(effective_stress_, start_stress_);
+    }
+    if (has_soil_) {
+      // The dummies' soil side is recomputed at every evaluation, for the dummy block only (at
+      // least one slot, so that a vectorised loop may load it unused).
+      const std::size_t dummies = std::max<std::size_t>(cells_.active() - cells_.moving(), 1);
+      dummy_pore_pressure_.resize(dummies);
+      dummy_stress_.resize(dummies);
+      dummy_velocity_.resize(dummies);
     }
     grid_ = cells_.view();
     active_ = cells_.active();
@@ -328,8 +336,8 @@ class Simulation final : public Engine {
 
   SoilView<Real, Dim> soil_view() {
     return {raw(soil_materials_), raw(soil_material_), raw(porosity_), raw(saturation_), raw(seepage_),
-            raw(pore_pressure_), raw(pressure_gradient_), raw(free_surface_), raw(surface_state_),
-            raw(effective_stress_), raw(total_stress_), raw(boundary_velocity_), raw(velocity_gradient_),
+            raw(dummy_pore_pressure_), raw(dummy_stress_), raw(dummy_velocity_), raw(pressure_gradient_),
+            raw(free_surface_), raw(surface_state_), raw(effective_stress_), raw(velocity_gradient_),
             raw(porosity_rate_), raw(plastic_strain_)};
   }
 
@@ -369,8 +377,6 @@ class Simulation final : public Engine {
     soil_material_ = material;
     porosity_ = porosity;
     effective_stress_ = stress;
-    total_stress_.assign(n, Voigt<Real>::Zero());
-    boundary_velocity_.assign(n, V::Zero());
     velocity_gradient_.assign(n, Mat<Real, Dim>::Zero());
     porosity_rate_.assign(n, Real(0));
     plastic_strain_.assign(n, Real(0));
@@ -379,7 +385,6 @@ class Simulation final : public Engine {
     start_porosity_.assign(n, Real(0));
     saturation_.assign(n, Real(0));
     seepage_.assign(n, V::Zero());
-    pore_pressure_.assign(n, Real(0));
     pressure_gradient_.assign(n, V::Zero());
     free_surface_.assign(n, 0);
     surface_state_.assign(n, std::uint8_t(SurfaceState::flux));
@@ -426,17 +431,17 @@ class Simulation final : public Engine {
   std::size_t moving_ = 0;
 
   Vector<V> position_, velocity_, ghost_, acceleration_, water_density_gradient_, start_position_, start_velocity_,
-      listed_position_, scratch_vec_;
+      listed_position_;
   Vector<Real> density_, water_density_, pressure_, density_rate_, water_density_rate_, step_limit_, start_density_,
-      start_water_density_, scratch_real_;
+      start_water_density_;
   Vector<Phase> phase_, scratch_phase_;
   Vector<std::uint8_t> ghost_wet_;
   bool has_soil_ = false;
   Vector<SoilMaterial> soil_materials_;
-  Vector<std::uint8_t> soil_material_, free_surface_, surface_state_, scratch_byte_;
-  Vector<Real> porosity_, saturation_, pore_pressure_;
-  Vector<V> seepage_, pressure_gradient_, boundary_velocity_;
-  Vector<Voigt<Real>> effective_stress_, total_stress_, start_stress_, scratch_voigt_;
+  Vector<std::uint8_t> soil_material_, free_surface_, surface_state_;
+  Vector<Real> porosity_, saturation_, dummy_pore_pressure_;
+  Vector<V> seepage_, pressure_gradient_, dummy_velocity_;
+  Vector<Voigt<Real>> effective_stress_, start_stress_, dummy_stress_;
   Vector<Mat<Real, Dim>> velocity_gradient_;
   Vector<Real> porosity_rate_, plastic_strain_, start_plastic_strain_, start_porosity_;
   std::vector<double> initial_position_;  // host, by id: N × 3

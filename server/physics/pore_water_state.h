@@ -1,7 +1,6 @@
 // The pore-water state of a soil particle before its neighbour passes: pressure from its pore
 // water density (Eq. 6 with the soil's K_w), the free-surface hydraulic condition (Eq. 39 with
-// ERRATA.md), the saturation S_w(p_c), p_c = −p_w (Section 2.2: zero pore-air pressure), and
-// Bishop's total stress σ = σ' − S_w p_w I (Eq. 7).
+// ERRATA.md) and the saturation S_w(p_c), p_c = −p_w (Section 2.2: zero pore-air pressure).
 //
 // Eq. 39's adaptive switch, per free-surface particle, decided at the first evaluation of a step
 // from the state the previous step left:
@@ -70,9 +69,7 @@ struct PoreWaterState {
     if (state != std::uint8_t(SurfaceState::flux)) p.water_density[i] = pore_density_of(m, rho0, pressure);  // Eq. 36b
     soil.surface_state[i] = state;
     p.pressure[i] = pressure;
-    const Real saturation = Real(m.hydraulic.saturation(-double(pressure)));
-    soil.saturation[i] = saturation;
-    soil.total_stress[i] = total_stress(soil.effective_stress[i], saturation, pressure);  // Eq. 7
+    soil.saturation[i] = Real(m.hydraulic.saturation(-double(pressure)));
   }
 
  private:

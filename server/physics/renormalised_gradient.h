@@ -73,7 +73,8 @@ struct RenormalisedDensityGradient {
       Real pressure_difference = 0;
       if constexpr (PoreWater) {
         const bool dummy = j >= dummy_begin;
-        const Real p_j = dummy ? soil.pore_pressure[j] : p.pressure[j];
+        // Both loads are made in a vectorised loop: the dummy index stays in range.
+        const Real p_j = dummy ? soil.dummy_pore_pressure[dummy ? j - dummy_begin : 0u] : p.pressure[j];
         if (dummy) rho_w_j = rho0 * (Real(1) + p_j / bulk_modulus);
         pressure_difference = volume * (p_j - p_i);
       }

@@ -49,7 +49,7 @@ struct SoilInteraction {
     const Real rho_i = p.density[i];
     const Real rho_w_i = p.water_density[i];
     const V grad_rho_i = p.water_density_gradient[i];
-    const M stress_i = in_plane<Real, Dim>(soil.total_stress[i]);
+    const M stress_i = in_plane<Real, Dim>(total_stress(soil.effective_stress[i], soil.saturation[i], p.pressure[i]));
     const Real c_s0 = Real(soil_sound_speed(m));
     const Real alpha_c0 = Real(m.viscosity_alpha) * c_s0;
     const std::uint32_t water_end = grid.water_end, moving_end = grid.moving_end;
@@ -72,14 +72,16 @@ struct SoilInteraction {
       const Real volume_j = sph.mass / p.density[j];
       const V grad_w = sph.kernel.gradient_factor(std::sqrt(r2)) * x_ij;
       const bool water = j < water_end, dummy = j >= moving_end;
-      const V v_j = dummy ? soil.boundary_velocity[j] : p.velocity[j];
+      const V v_j = dummy ? soil.dummy_velocity[j - moving_end] : p.velocity[j];
       const V v_ij = v_i - v_j;
       divergence += velocity_divergence_pair(volume_j, v_ij, grad_w);
       if (water) {
         force += stress_force_pair<Real, Dim>(volume_j, stress_i - p.pressure[j] * M::Identity(), grad_w);
         continue;
       }
-      force += stress_force_pair<Real, Dim>(volume_j, stress_i + in_plane<Real, Dim>(soil.total_stress[j]), grad_w);
+      const Voigt<Real> stress_j = dummy ? soil.dummy_stress[j - moving_end]
+                                         : total_stress(soil.effective_stress[j], soil.saturation[j], p.pressure[j]);
+      force += stress_force_pair<Real, Dim>(volume_j, stress_i + in_plane<Real, Dim>(stress_j), grad_w);
       const Real inv_r2_eta2 = Real(1) / (r2 + sph.eta2);
       const Real mu = viscosity_mu(sph.h, v_ij, x_ij, inv_r2_eta2);
       max_mu = std::fmax(max_mu, std::fabs(mu));

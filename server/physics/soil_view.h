@@ -1,7 +1,7 @@
 // Raw pointers into the soil and pore-water arrays, handed to the soil kernels by value at each
 // launch (the soil counterpart of ParticleView). For a soil particle the ParticleView fields
 // water_density and pressure hold its pore water's ρ_w and p_w; for a dummy particle they belong
-// to the free water, and its pore-water pressure, seen by soil neighbours only, is here.
+// to the free water, and its soil side, seen by soil neighbours only, is here.
 #pragma once
 
 #include <cstdint>
@@ -26,14 +26,15 @@ struct SoilView {
   Real* porosity;                      // φ (Eq. 26a)
   Real* saturation;                    // S_w(p_c) (Eqs. 14, 42, 43)
   Vec<Real, Dim>* seepage;             // q_w (Eq. 27b); for a dummy, −q_g (Eq. 35b)
-  Real* pore_pressure;                 // per dummy particle: p_w of the pore water (Eq. 32b)
+  // The dummies' soil side, indexed by b − GridView::moving_end (the dummy block's own index):
+  Real* dummy_pore_pressure;           // p_w of the pore water (Eq. 32b)
+  Voigt<Real>* dummy_stress;           // total stress σ (Eq. 32a)
+  Vec<Real, Dim>* dummy_velocity;      // −v_g (Eqs. 34a, 35a)
   Vec<Real, Dim>* pressure_gradient;   // per soil particle: renormalised ⟨∇p_w⟩^L (Eq. 25)
   std::uint8_t* free_surface;          // per soil particle: 1 where ∇·x is below the threshold (Eq. 38)
   std::uint8_t* surface_state;         // per soil particle: a SurfaceState
-  Voigt<Real>* effective_stress;       // per soil particle: σ' (Eqs. 7, 8)
-  Voigt<Real>* total_stress;           // σ = σ' − S_w p_w I of a soil particle (Eq. 7); for a
-                                       // dummy, extrapolated from the soil (Eq. 32a)
-  Vec<Real, Dim>* boundary_velocity;   // per dummy particle: −v_g from the soil (Eqs. 34a, 35a)
+  Voigt<Real>* effective_stress;       // per soil particle: σ' (Eqs. 7, 8); its total stress
+                                       // σ' − S_w p_w I is formed where it is read
   Mat<Real, Dim>* velocity_gradient;   // per soil particle: L_ab = ∂v_a/∂x_b (Eqs. 26c, 26d)
   Real* porosity_rate;                 // per soil particle: dφ/dt (Eq. 26a)
   Real* plastic_strain;                // per soil particle: κ (Eq. 12)

@@ -40,20 +40,21 @@ struct SolidBoundarySoil {
           const Real r = std::sqrt(r2);
           Eigen::Matrix<Real, 7, 1> values;
           values(0) = p.pressure[j];
-          values.template tail<6>() = soil.total_stress[j];
+          values.template tail<6>() = total_stress(soil.effective_stress[j], soil.saturation[j], p.pressure[j]);
           ghost.add(sph.mass / p.density[j], sph.kernel.value(r), sph.kernel.gradient_factor(r) * x_gj, x_gj, values,
                     p.velocity[j]);
         });
+    const std::uint32_t k = b - grid.moving_end;  // the dummy block's index
     if (ghost.empty()) {
-      soil.pore_pressure[b] = 0;
-      soil.total_stress[b] = Voigt<Real>::Zero();
-      soil.boundary_velocity[b] = Vec<Real, Dim>::Zero();
+      soil.dummy_pore_pressure[k] = 0;
+      soil.dummy_stress[k] = Voigt<Real>::Zero();
+      soil.dummy_velocity[k] = Vec<Real, Dim>::Zero();
       return;
     }
     const Eigen::Matrix<Real, 7, 1> values = ghost.extrapolate(p.position[b], x_g);
-    soil.pore_pressure[b] = values(0);
-    soil.total_stress[b] = values.template tail<6>();
-    soil.boundary_velocity[b] = -ghost.ghost_velocity();
+    soil.dummy_pore_pressure[k] = values(0);
+    soil.dummy_stress[k] = values.template tail<6>();
+    soil.dummy_velocity[k] = -ghost.ghost_velocity();
   }
 };
 
