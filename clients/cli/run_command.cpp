@@ -212,6 +212,14 @@ int run_command(const std::vector<std::string>& args) {
                  std::size_t(summary.particles.soil), std::size_t(summary.particles.boundary), config.dp, config.h,
                  config.sound_speed,
                  summary.precision.c_str(), engine->device_name(), omp_get_max_threads(), end_time);
+    if (spec.has_initialisation()) {
+      // Before t = 0, without outputs: the main stage and every output start at its end.
+      std::fprintf(stderr, "cascade run: initialisation stage of %g s\n", spec.initialisation().duration());
+      const std::uint64_t steps = run_initialisation(spec, *engine);
+      summary.events.push_back({0.0, engine->step_count(), "initialisation",
+                                "stage of " + format_number(spec.initialisation().duration()) + " s in " +
+                                    std::to_string(steps) + " steps; clock and displacement restart at t = 0"});
+    }
     Progress progress(end_time, stderr);
     outputs.observe(*engine, true);
     std::size_t lost = 0;

@@ -19,6 +19,13 @@
 namespace cascade {
 
 enum class Precision { single_precision, double_precision };
+
+// A boundary body whose dummies carry a prescribed pore pressure on their soil side (a drained
+// wall, Eqs. 36, 37); the other boundary bodies are impermeable (Eqs. 32b, 35b).
+struct DrainedWall {
+  std::uint32_t body = 0;    // index of the Body (HostParticles::body)
+  double pore_pressure = 0;  // p_w,pres (Pa)
+};
 enum class Device { cpu, cuda };
 
 struct EngineConfig {
@@ -35,6 +42,7 @@ struct EngineConfig {
   double viscosity_alpha = 0.01;        // α_μ,w (Eq. 23b)
   std::vector<SoilMaterial> soils;      // HostParticles::soil_material indexes these
   HydraulicForcing forcing;             // the free-surface conditions at the start (Eq. 39)
+  std::vector<DrainedWall> drained_walls;  // at most 255
   double cfl = 0.2;                     // C0 (Eq. 40d)
   double max_dt = 0;                    // 0: none
   double min_dt = 1e-12;                // a smaller step fails the run
@@ -63,6 +71,10 @@ class Engine {
   // The free-surface hydraulic conditions (Eq. 39); a change applies from the next step on.
   virtual void set_forcing(const HydraulicForcing& forcing) = 0;
   virtual HydraulicForcing forcing() const = 0;
+  // The end of an initialisation stage (ScenarioSpec.initialisation): the simulated time is set
+  // back to 0 and the displacement field is measured from the positions reached. The state, the
+  // step count and the forcing are kept.
+  virtual void restart_clock() = 0;
 };
 
 std::unique_ptr<Engine> make_engine(const EngineConfig& config, const HostParticles& particles);

@@ -18,6 +18,11 @@ struct HydraulicForcing {
   double ponding_pressure = 0;
   // p_min (Pa): a drying free-surface particle holds p_w = p_min once it reaches it.
   double drying_pressure = -std::numeric_limits<double>::infinity();
+  // A pore pressure (Pa) held by every free-surface particle, with the seepage of Eq. 27b (a
+  // Dirichlet condition of Eq. 39, e.g. the drained top of Section 4.2's initialisation stage);
+  // the flux, ponding and drying conditions do not apply while it holds.
+  bool has_surface_pressure = false;
+  double surface_pressure = 0;
   // Rain falls on the free-surface particles inside this box only (the first `dimensions`
   // components, (x, z) in 2D); elsewhere the surface takes no flux.
   bool has_region = false;

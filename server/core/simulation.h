@@ -116,6 +116,13 @@ class Simulation final : public Engine {
   void set_forcing(const HydraulicForcing& forcing) override { forcing_ = forcing; }
   HydraulicForcing forcing() const override { return forcing_; }
 
+  void restart_clock() override {
+    time_ = 0;
+    if (!has_soil_) return;
+    const FieldFrame now = frame();
+    initial_position_ = now.position;
+  }
+
   std::size_t device_bytes() const override {
     std::size_t bytes = 0;
     auto add = [&](const auto& v) { bytes += v.capacity() * sizeof(typename std::decay_t<decltype(v)>::value_type); };
@@ -126,7 +133,7 @@ class Simulation final : public Engine {
     add(phase_), add(scratch_phase_), add(ghost_wet_), add(id_), add(scratch_index_);
     add(soil_materials_), add(soil_material_), add(free_surface_), add(surface_state_);
     add(porosity_), add(saturation_), add(seepage_), add(pressure_gradient_), add(effective_stress_), add(start_stress_);
-    add(dummy_pore_pressure_), add(dummy_stress_), add(dummy_velocity_);
+    add(dummy_pore_pressure_), add(dummy_stress_), add(dummy_velocity_), add(wall_), add(wall_pore_pressure_);
     add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
     return bytes + cells_.bytes() + neighbours_.bytes();
   }
@@ -257,6 +264,7 @@ class Simulation final : public Engine {
       // seepage discharge that decides it (pore_water_state.h). The rest is recomputed.
       cells_.reorder(soil_material_, ghost_wet_);
       cells_.reorder(surface_state_, ghost_wet_);
+      cells_.reorder(wall_, ghost_wet_);
       cells_.reorder(porosity_, start_density_);
       cells_.reorder(plastic_strain_, start_density_);
       cells_.reorder(seepage_, start_position_);
@@ -338,7 +346,7 @@ class Simulation final : public Engine {
     return {raw(soil_materials_), raw(soil_material_), raw(porosity_), raw(saturation_), raw(seepage_),
             raw(dummy_pore_pressure_), raw(dummy_stress_), raw(dummy_velocity_), raw(pressure_gradient_),
             raw(free_surface_), raw(surface_state_), raw(effective_stress_), raw(velocity_gradient_),
-            raw(porosity_rate_), raw(plastic_strain_)};
+            raw(porosity_rate_), raw(plastic_strain_), raw(wall_), raw(wall_pore_pressure_)};
   }
 
   // σ', κ and φ at a Symplectic stage (soil_stress_update.h), from the step's start.
@@ -373,6 +381,18 @@ class Simulation final : public Engine {
       material[i] = host.soil_material[i];
       porosity[i] = Real(host.porosity[i]);
     }
+    // The drained walls: per particle the 1-based index of its wall's entry, 0 for the rest.
+    if (config_.drained_walls.size() > 255) throw std::invalid_argument("a case has at most 255 drained walls");
+    std::vector<std::uint8_t> wall(n, 0);
+    std::vector<Real> wall_pressure(std::max<std::size_t>(config_.drained_walls.size(), 1), Real(0));
+    for (std::size_t k = 0; k < config_.drained_walls.size(); ++k) {
+      wall_pressure[k] = Real(config_.drained_walls[k].pore_pressure);
+      for (std::size_t i = 0; i < n; ++i)
+        if (host.phase[i] == Phase::boundary && i < host.body.size() && host.body[i] == config_.drained_walls[k].body)
+          wall[i] = std::uint8_t(k + 1);
+    }
+    wall_ = wall;
+    wall_pore_pressure_ = wall_pressure;
     soil_materials_ = config_.soils;
     soil_material_ = material;
     porosity_ = porosity;
@@ -438,8 +458,8 @@ class Simulation final : public Engine {
   Vector<std::uint8_t> ghost_wet_;
   bool has_soil_ = false;
   Vector<SoilMaterial> soil_materials_;
-  Vector<std::uint8_t> soil_material_, free_surface_, surface_state_;
-  Vector<Real> porosity_, saturation_, dummy_pore_pressure_;
+  Vector<std::uint8_t> soil_material_, free_surface_, surface_state_, wall_;
+  Vector<Real> porosity_, saturation_, dummy_pore_pressure_, wall_pore_pressure_;
   Vector<V> seepage_, pressure_gradient_, dummy_velocity_;
   Vector<Voigt<Real>> effective_stress_, start_stress_, dummy_stress_;
   Vector<Mat<Real, Dim>> velocity_gradient_;

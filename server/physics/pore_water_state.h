@@ -11,6 +11,9 @@
 //    the rain (−q_z > i) the particle returns to the flux condition.
 //  - drying: p_w = p_min is prescribed; once the soil delivers more than the evaporation demand
 //    (q_z > −i, or rain again) the particle returns to the flux condition.
+//  - held: while the forcing prescribes a surface pressure, every free-surface particle holds it
+//    (a Dirichlet condition) and q_w follows Eq. 27b; once it no longer does, the particle takes
+//    the switch above from its held pressure.
 // A particle that leaves the free surface returns to the flux state.
 #pragma once
 
@@ -29,12 +32,15 @@ struct SurfaceForcing {
   Real intensity;        // m/s into the soil
   Real ponding;          // p_max (Pa)
   Real drying;           // p_min (Pa), may be −∞
+  bool has_surface_pressure;
+  Real surface_pressure;  // Pa, held by every free-surface particle when has_surface_pressure
   bool has_region;
   Vec<Real, Dim> region_min, region_max;
 
   static SurfaceForcing from(const HydraulicForcing& f) {
-    SurfaceForcing s{Real(f.rainfall_intensity), Real(f.ponding_pressure), Real(f.drying_pressure), f.has_region,
-                     Vec<Real, Dim>::Zero(), Vec<Real, Dim>::Zero()};
+    SurfaceForcing s{Real(f.rainfall_intensity), Real(f.ponding_pressure), Real(f.drying_pressure),
+                     f.has_surface_pressure, Real(f.surface_pressure), f.has_region, Vec<Real, Dim>::Zero(),
+                     Vec<Real, Dim>::Zero()};
     for (int a = 0; a < Dim; ++a) {
       s.region_min[a] = Real(f.region_min[a]);
       s.region_max[a] = Real(f.region_max[a]);
@@ -66,6 +72,7 @@ struct PoreWaterState {
     if (update_states) state = next_state(i, pressure);
     if (state == std::uint8_t(SurfaceState::ponded)) pressure = forcing.ponding;
     if (state == std::uint8_t(SurfaceState::drying)) pressure = forcing.drying;
+    if (state == std::uint8_t(SurfaceState::held)) pressure = forcing.surface_pressure;
     if (state != std::uint8_t(SurfaceState::flux)) p.water_density[i] = pore_density_of(m, rho0, pressure);  // Eq. 36b
     soil.surface_state[i] = state;
     p.pressure[i] = pressure;
@@ -75,6 +82,7 @@ struct PoreWaterState {
  private:
   CASCADE_HD std::uint8_t next_state(std::uint32_t i, Real pressure) const {
     if (!soil.free_surface[i]) return std::uint8_t(SurfaceState::flux);
+    if (forcing.has_surface_pressure) return std::uint8_t(SurfaceState::held);
     const Real intensity = forcing.intensity_at(p.position[i]);
     const Real q_up = soil.seepage[i][Dim - 1];  // Eq. 27b's discharge of the last evaluation
     switch (SurfaceState(soil.surface_state[i])) {
@@ -84,6 +92,7 @@ struct PoreWaterState {
         return (intensity >= Real(0) || q_up > -intensity) ? std::uint8_t(SurfaceState::flux)
                                                            : std::uint8_t(SurfaceState::drying);
       case SurfaceState::flux:
+      case SurfaceState::held:
         break;
     }
     if (pressure >= forcing.ponding) return std::uint8_t(SurfaceState::ponded);  // also a seepage face

@@ -2,7 +2,7 @@
 // rate (Eq. 22), the momentum with Bishop's total stress and artificial viscosity (Eqs. 7, 26b),
 // the velocity gradient of the strain and spin rates (Eqs. 26c, 26d), the pore-water continuity
 // (Eq. 27a, pore_water_continuity.h) and the porosity rate (Eq. 26a), then the time-step limits
-// (Eqs. 40a-c).
+// (Eqs. 40a-c). A material with damping adds the skeleton's velocity damping (soil_damping.h).
 //
 // Neighbours: every phase counts in Eq. 22. A water neighbour acts on the skeleton through its
 // pressure, as the total stress −p_w I of Eq. 4 in Eq. 26b (Section 3.3: the pressure condition at
@@ -22,6 +22,7 @@
 #include "server/core/small_matrix.h"
 #include "server/physics/numerical_density.h"
 #include "server/physics/pore_water_continuity.h"
+#include "server/physics/soil_damping.h"
 #include "server/physics/soil_momentum.h"
 #include "server/physics/soil_view.h"
 #include "server/physics/water_continuity.h"
@@ -122,7 +123,7 @@ struct SoilInteraction {
       return;
     }
     const Real rho_s = mixture_density(m, porosity, saturation, rho0);
-    const V acceleration = force / rho_s + viscous + sph.gravity;
+    const V acceleration = force / rho_s + viscous + sph.gravity + soil_damping_acceleration(m, rho_s, sph.h, v_i);
     p.density_rate[i] = rho_i * divergence;
     p.acceleration[i] = acceleration;
     soil.velocity_gradient[i] = gradient;

@@ -17,6 +17,7 @@ enum class SurfaceState : std::uint8_t {
   flux = 0,     // the prescribed rainfall or evaporation flux
   ponded = 1,   // p_w held at the ponding pressure p_max
   drying = 2,   // p_w held at the drying limit p_min
+  held = 3,     // p_w held at the prescribed surface pressure (HydraulicForcing::surface_pressure)
 };
 
 template <typename Real, int Dim>
@@ -38,6 +39,10 @@ struct SoilView {
   Mat<Real, Dim>* velocity_gradient;   // per soil particle: L_ab = ∂v_a/∂x_b (Eqs. 26c, 26d)
   Real* porosity_rate;                 // per soil particle: dφ/dt (Eq. 26a)
   Real* plastic_strain;                // per soil particle: κ (Eq. 12)
+  // Drained walls (Eqs. 36, 37): per particle, 0 for an impermeable wall (and every other phase),
+  // k > 0 for a dummy of the wall whose prescribed pore pressure is wall_pore_pressure[k − 1].
+  const std::uint8_t* wall;
+  const Real* wall_pore_pressure;
 };
 
 // The pore-water state of Eq. 6 with the soil's bulk modulus: p_w = K_w/ρ_w0 (ρ_w − ρ_w0), and

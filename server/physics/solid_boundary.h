@@ -60,6 +60,15 @@ struct GhostInterpolation {
     return rhs.row(0).transpose() / shepard;
   }
 
+  // Values at the ghost node itself: the first-order interpolation (Eq. 30), or the Shepard values
+  // (Eq. 33) when |det A_g| < 10⁻³. A drained wall (Eq. 36a) mirrors them about its prescribed
+  // value instead of extrapolating them.
+  CASCADE_HD Values at_ghost() const {
+    const Real det = determinant(a);
+    if (std::fabs(det) >= Real(1e-3)) return (inverse(a, det) * rhs).row(0).transpose();
+    return rhs.row(0).transpose() / shepard;
+  }
+
   // Eq. 34a: Shepard-interpolated velocity at the ghost node.
   CASCADE_HD Vec<Real, Dim> ghost_velocity() const { return velocity / shepard; }
 };

@@ -1,17 +1,20 @@
 // Soil side of the solid boundary (Section 3.3.1): the values that a dummy particle shows its
 // soil neighbours, from the soil around its ghost node. Water neighbours see the water side
 // (solid_boundary.h); a wall touched by both keeps both.
-//  - total stress σ (Eq. 32a) and p_w: first-order interpolation at the ghost node and Taylor
-//    extrapolation to the dummy (Eqs. 30-32), or the Shepard value (Eq. 33) when
-//    |det A_g| < 10⁻³. For p_w: first-order interpolation at the ghost node and Taylor extrapolation to the dummy
-//    (Eqs. 30-32b), or the Shepard value (Eq. 33b) when |det A_g| < 10⁻³. The paper extrapolates
-//    ρ_w; the pressure is the same within one soil (linear Eq. 6) and stays continuous between
-//    soils of different K_w, whose densities jump. A soil neighbour reads ρ_w from it with its
-//    own K_w (renormalised_gradient.h).
+//  - total stress σ (Eq. 32a): first-order interpolation at the ghost node and Taylor
+//    extrapolation to the dummy (Eqs. 30-32a), or the Shepard value (Eq. 33a) when
+//    |det A_g| < 10⁻³.
+//  - p_w of an impermeable wall: the same interpolation and extrapolation (Eqs. 30-32b, 33b). The
+//    paper extrapolates ρ_w; the pressure is the same within one soil (linear Eq. 6) and stays
+//    continuous between soils of different K_w, whose densities jump. A soil neighbour reads ρ_w
+//    from it with its own K_w (renormalised_gradient.h).
+//  - p_w of a drained wall: the prescribed pressure mirrored about the ghost node's value
+//    (Eq. 36, drained_wall.h).
 //  - v: Shepard interpolation of the soil velocity at the ghost node, reversed at the dummy
-//    (Eqs. 34a, 35a): no slip, no penetration.
-//  - q_w: Shepard interpolation at the ghost node (Eq. 34b), reversed at the dummy (Eq. 35b), so
-//    that the seepage through the wall vanishes: an impermeable wall.
+//    (Eqs. 34a, 35a): no slip, no penetration, for both kinds of wall.
+//  - q_w: Shepard interpolation at the ghost node (Eq. 34b), reversed at the dummy of an
+//    impermeable wall (Eq. 35b), so that the seepage through it vanishes, and kept at the dummy of
+//    a drained wall (Eq. 37), so that it passes.
 #pragma once
 
 #include <cmath>
@@ -19,6 +22,7 @@
 
 #include "server/core/neighbour_grid.h"
 #include "server/core/particle_view.h"
+#include "server/physics/drained_wall.h"
 #include "server/physics/soil_view.h"
 #include "server/physics/solid_boundary.h"
 
@@ -45,14 +49,16 @@ struct SolidBoundarySoil {
                     p.velocity[j]);
         });
     const std::uint32_t k = b - grid.moving_end;  // the dummy block's index
+    const std::uint8_t wall = soil.wall[b];
+    const Real prescribed = wall ? soil.wall_pore_pressure[wall - 1] : Real(0);
     if (ghost.empty()) {
-      soil.dummy_pore_pressure[k] = 0;
+      soil.dummy_pore_pressure[k] = prescribed;
       soil.dummy_stress[k] = Voigt<Real>::Zero();
       soil.dummy_velocity[k] = Vec<Real, Dim>::Zero();
       return;
     }
     const Eigen::Matrix<Real, 7, 1> values = ghost.extrapolate(p.position[b], x_g);
-    soil.dummy_pore_pressure[k] = values(0);
+    soil.dummy_pore_pressure[k] = wall ? drained_wall_pore_pressure(prescribed, ghost.at_ghost()(0)) : values(0);
     soil.dummy_stress[k] = values.template tail<6>();
     soil.dummy_velocity[k] = -ghost.ghost_velocity();
   }
@@ -76,7 +82,8 @@ struct SolidBoundarySeepage {
           shepard += weight;
           q += weight * soil.seepage[j];
         });
-    soil.seepage[b] = shepard > Real(0) ? Vec<Real, Dim>(-q / shepard) : Vec<Real, Dim>::Zero();
+    soil.seepage[b] = shepard > Real(0) ? wall_seepage(Vec<Real, Dim>(q / shepard), soil.wall[b] != 0)
+                                        : Vec<Real, Dim>::Zero();
   }
 };
 

@@ -57,6 +57,7 @@ class SpecChecker {
     check_output();
     check_probes();
     check_hydraulics();
+    check_initialisation();
   }
 
  private:
@@ -208,8 +209,39 @@ class SpecChecker {
                 "is for soil bodies; '" + b.material() + "' is not a soil material");
       }
       if (b.layers() < 0) error(key + ".layers", "must not be negative (0 means enough to cover 2h)");
+      if (b.has_pore_pressure()) check_drained_wall(key + ".pore_pressure", b);
     }
     if (!has_fluid) error("bodies", "has no fluid body: at least one body needs `kind: fluid`");
+  }
+
+  // A drained wall (Eqs. 36, 37): a boundary body in a case with soil, whose prescribed pore
+  // water keeps a positive density ρ_w0 (1 + p / K_w) in every soil.
+  void check_drained_wall(const std::string& key, const pb::Body& b) const {
+    if (b.kind() != pb::BOUNDARY)
+      error(key, "is the prescribed pore pressure of a drained wall: give it on a boundary body (a soil body starts "
+                 "from initial.water_table or initial.suction)");
+    if (soil_material_indices(spec_).empty())
+      error(key, "acts on the pore water of soil next to the wall, and the case has no soil material");
+    above_minus_bulk_modulus(key, b.pore_pressure());
+  }
+
+  // The smallest pore-water bulk modulus K_w of the soils (∞ without soil).
+  double smallest_bulk_modulus() const {
+    double bulk = std::numeric_limits<double>::infinity();
+    for (int m : soil_material_indices(spec_)) {
+      const double k = spec_.materials(m).soil().water_bulk_modulus();
+      bulk = std::min(bulk, k > 0 ? k : kDefaultWaterBulkModulus);
+    }
+    return bulk;
+  }
+
+  // A prescribed pore pressure: finite and above −K_w of every soil.
+  void above_minus_bulk_modulus(const std::string& key, double pressure) const {
+    finite(key, pressure);
+    const double bulk = smallest_bulk_modulus();
+    if (!(pressure > -bulk))
+      error(key, "must be above -K_w = " + number(-bulk) + " Pa, the smallest pore-water bulk modulus of the soils (is " +
+                     number(pressure) + "): the pore-water density ρ_w0 (1 + p / K_w) must stay positive");
   }
 
   static std::string soil_state_key(const pb::InitialState& initial) {
@@ -392,47 +424,63 @@ class SpecChecker {
            "seepage_x" + y + "/_z, effective_stress_xx/yy/zz/xy/yz/zx, free_surface";
   }
 
-  // The free-surface conditions (Eq. 39). The pore water at p_max and p_min must keep a positive
-  // density ρ_w0 (1 + p / K_w) in every soil.
+  // The free-surface conditions (Eq. 39) of the case and of its initialisation stage. The pore
+  // water at p_max, p_min and a held surface pressure must keep a positive density
+  // ρ_w0 (1 + p / K_w) in every soil.
   void check_hydraulics() const {
-    if (!spec_.has_hydraulics()) return;
-    const pb::HydraulicBoundary& h = spec_.hydraulics();
-    const std::vector<int> soils = soil_material_indices(spec_);
-    if (soils.empty()) error("hydraulics", "acts on the free surface of soil, and the case has no soil material");
-    finite("hydraulics.rainfall_intensity", h.rainfall_intensity());
+    if (spec_.has_hydraulics()) check_hydraulic_boundary("hydraulics", spec_.hydraulics());
+  }
+
+  void check_initialisation() const {
+    if (!spec_.has_initialisation()) return;
+    const pb::Initialisation& init = spec_.initialisation();
+    finite("initialisation.duration", init.duration());
+    if (!(init.duration() > 0))
+      error("initialisation.duration", "must be greater than 0 (is " + number(init.duration()) +
+                                           "): the simulated seconds the stage runs before t = 0");
+    if (!init.has_hydraulics()) return;
+    if (init.hydraulics().rainfall_size() > 0)
+      error("initialisation.hydraulics.rainfall", "is a time series; the initialisation stage holds constant "
+                                                  "conditions: give rainfall_intensity");
+    check_hydraulic_boundary("initialisation.hydraulics", init.hydraulics());
+  }
+
+  void check_hydraulic_boundary(const std::string& key, const pb::HydraulicBoundary& h) const {
+    if (soil_material_indices(spec_).empty())
+      error(key, "acts on the free surface of soil, and the case has no soil material");
+    finite(key + ".rainfall_intensity", h.rainfall_intensity());
     if (h.rainfall_size() > 0 && h.rainfall_intensity() != 0)
-      error("hydraulics.rainfall", "cannot be given together with rainfall_intensity: give a constant intensity or a "
-                                   "time series");
+      error(key + ".rainfall", "cannot be given together with rainfall_intensity: give a constant intensity or a "
+                               "time series");
     for (int i = 0; i < h.rainfall_size(); ++i) {
-      const std::string key = indexed("hydraulics.rainfall", i);
+      const std::string point_key = indexed(key + ".rainfall", i);
       const pb::RainfallPoint& point = h.rainfall(i);
-      finite(key + ".time", point.time());
-      finite(key + ".intensity", point.intensity());
-      if (point.time() < 0) error(key + ".time", "must not be negative (is " + number(point.time()) + ")");
+      finite(point_key + ".time", point.time());
+      finite(point_key + ".intensity", point.intensity());
+      if (point.time() < 0) error(point_key + ".time", "must not be negative (is " + number(point.time()) + ")");
       if (i > 0 && !(point.time() > h.rainfall(i - 1).time()))
-        error(key + ".time", "must be later than the time of the point before (" + number(point.time()) +
-                                 " <= " + number(h.rainfall(i - 1).time()) + ")");
+        error(point_key + ".time", "must be later than the time of the point before (" + number(point.time()) +
+                                       " <= " + number(h.rainfall(i - 1).time()) + ")");
     }
-    finite("hydraulics.ponding_pressure", h.ponding_pressure());
-    double bulk = std::numeric_limits<double>::infinity();  // the smallest K_w of the soils
-    for (int m : soils) {
-      const double k = spec_.materials(m).soil().water_bulk_modulus();
-      bulk = std::min(bulk, k > 0 ? k : kDefaultWaterBulkModulus);
-    }
+    finite(key + ".ponding_pressure", h.ponding_pressure());
+    const double bulk = smallest_bulk_modulus();
     if (!(h.ponding_pressure() > -bulk))
-      error("hydraulics.ponding_pressure", "must be above -K_w = " + number(-bulk) + " Pa (is " +
-                                               number(h.ponding_pressure()) + ")");
+      error(key + ".ponding_pressure", "must be above -K_w = " + number(-bulk) + " Pa (is " +
+                                           number(h.ponding_pressure()) + ")");
     if (h.has_drying_pressure()) {
-      finite("hydraulics.drying_pressure", h.drying_pressure());
+      finite(key + ".drying_pressure", h.drying_pressure());
       if (!(h.drying_pressure() < h.ponding_pressure()))
-        error("hydraulics.drying_pressure", "must be below ponding_pressure (" + number(h.drying_pressure()) +
-                                                " >= " + number(h.ponding_pressure()) + ")");
-      if (!(h.drying_pressure() > -bulk))
-        error("hydraulics.drying_pressure",
-              "must be above -K_w = " + number(-bulk) + " Pa, the smallest pore-water bulk modulus of the soils (is " +
-                  number(h.drying_pressure()) + "): the pore-water density ρ_w0 (1 + p / K_w) must stay positive");
+        error(key + ".drying_pressure", "must be below ponding_pressure (" + number(h.drying_pressure()) +
+                                            " >= " + number(h.ponding_pressure()) + ")");
+      above_minus_bulk_modulus(key + ".drying_pressure", h.drying_pressure());
     }
-    if (h.has_region()) check_min_max("hydraulics.region", h.region().min(), h.region().max(), "the rain region");
+    if (h.has_surface_pressure()) {
+      if (h.rainfall_intensity() != 0 || h.rainfall_size() > 0)
+        error(key + ".surface_pressure", "holds the pore pressure of the whole free surface and cannot be given "
+                                         "together with rain: leave out rainfall_intensity and rainfall");
+      above_minus_bulk_modulus(key + ".surface_pressure", h.surface_pressure());
+    }
+    if (h.has_region()) check_min_max(key + ".region", h.region().min(), h.region().max(), "the rain region");
   }
 
   const pb::ScenarioSpec& spec_;

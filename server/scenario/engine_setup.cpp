@@ -52,13 +52,27 @@ EngineConfig engine_config(const v1::ScenarioSpec& spec, const HostParticles& pa
     c.sound_speed = 0.0;  // no free water
   }
   for (int m : soils) c.soils.push_back(soil_material(spec, m));
-  c.forcing = hydraulic_forcing(spec, 0.0);
+  c.forcing = spec.has_initialisation() ? initialisation_forcing(spec) : hydraulic_forcing(spec, 0.0);
+  for (int b = 0; b < spec.bodies_size(); ++b)
+    if (spec.bodies(b).kind() == v1::BOUNDARY && spec.bodies(b).has_pore_pressure())
+      c.drained_walls.push_back({std::uint32_t(b), spec.bodies(b).pore_pressure()});
   c.cfl = spec.numerics().cfl() > 0 ? spec.numerics().cfl() : 0.2;
   c.max_dt = spec.numerics().max_dt();
   c.min_dt = spec.numerics().min_dt() > 0 ? spec.numerics().min_dt() : 1e-12;
   c.precision = precision;
   c.device = device;
   return c;
+}
+
+std::uint64_t run_initialisation(const v1::ScenarioSpec& spec, Engine& engine) {
+  if (!spec.has_initialisation()) return 0;
+  const std::uint64_t first = engine.step_count();
+  engine.set_forcing(initialisation_forcing(spec));
+  const double duration = spec.initialisation().duration();
+  while (engine.time() < duration * (1 - 1e-12)) engine.step();
+  engine.restart_clock();
+  engine.set_forcing(hydraulic_forcing(spec, 0.0));
+  return engine.step_count() - first;
 }
 
 }  // namespace cascade

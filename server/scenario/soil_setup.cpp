@@ -195,6 +195,10 @@ SoilMaterial soil_material(const pb::ScenarioSpec& spec, int material_index, con
     if (s.viscosity_alpha() < 0)
       report.error(key + ".viscosity_alpha", "must not be negative (is " + number(s.viscosity_alpha()) + ")");
   }
+  report.finite(key + ".damping", s.damping());
+  if (s.damping() < 0) report.error(key + ".damping", "must not be negative (is " + number(s.damping()) + "); 0 means none");
+  if (s.damping() > 0 && s.rigid())
+    report.error(key + ".damping", "damps the skeleton's motion, and a rigid soil does not move: leave it out");
 
   SoilMaterial out;
   out.grain_density = s.grain_density();
@@ -205,6 +209,7 @@ SoilMaterial soil_material(const pb::ScenarioSpec& spec, int material_index, con
   out.delta = s.has_delta() ? s.delta() : kDefaultPoreDelta;
   out.viscosity_alpha = s.has_viscosity_alpha() ? s.viscosity_alpha() : kDefaultSoilViscosityAlpha;
   out.rigid = s.rigid();
+  out.damping = s.damping();
   out.hydraulic = hydraulic_model(s.hydraulic(), reference_water_density(spec) * gravity_magnitude(spec),
                                   key + ".hydraulic", report);
   out.mechanical = mechanical_model(s, key + ".mechanical", report);
@@ -236,8 +241,15 @@ double earth_pressure_coefficient(const SoilMaterial& soil, const pb::InitialSta
 }
 
 HydraulicForcing hydraulic_forcing(const pb::ScenarioSpec& spec, double time) {
+  return hydraulic_forcing(spec.hydraulics(), time);
+}
+
+HydraulicForcing initialisation_forcing(const pb::ScenarioSpec& spec) {
+  return hydraulic_forcing(spec.initialisation().hydraulics(), 0.0);
+}
+
+HydraulicForcing hydraulic_forcing(const pb::HydraulicBoundary& h, double time) {
   HydraulicForcing f;
-  const pb::HydraulicBoundary& h = spec.hydraulics();
   f.rainfall_intensity = h.rainfall_intensity();
   if (h.rainfall_size() > 0) {
     // Piecewise constant; a point counts from its own time on, whatever rounding the step sum has.
@@ -250,6 +262,8 @@ HydraulicForcing hydraulic_forcing(const pb::ScenarioSpec& spec, double time) {
   }
   f.ponding_pressure = h.ponding_pressure();
   if (h.has_drying_pressure()) f.drying_pressure = h.drying_pressure();
+  f.has_surface_pressure = h.has_surface_pressure();
+  f.surface_pressure = h.surface_pressure();
   if (h.has_region()) {
     f.has_region = true;
     for (int a = 0; a < h.region().min_size() && a < 3; ++a) f.region_min[a] = h.region().min(a);

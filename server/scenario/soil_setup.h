@@ -50,5 +50,9 @@ double earth_pressure_coefficient(const SoilMaterial& soil, const v1::InitialSta
 // The free-surface conditions of `spec.hydraulics` at simulated time t: the rain series is
 // piecewise constant (a point's intensity holds from its time on; none before the first point).
 HydraulicForcing hydraulic_forcing(const v1::ScenarioSpec& spec, double time);
+// The same for one HydraulicBoundary: the case's own or its initialisation stage's.
+HydraulicForcing hydraulic_forcing(const v1::HydraulicBoundary& hydraulics, double time);
+// The conditions of the initialisation stage (spec.initialisation.hydraulics, constant in time).
+HydraulicForcing initialisation_forcing(const v1::ScenarioSpec& spec);
 
 }  // namespace cascade

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "server/scenario/case_loader.h"
+#include "server/scenario/engine_setup.h"
+#include "server/scenario/particle_builder.h"
 #include "server/scenario/soil_setup.h"
 
 namespace cascade {
@@ -954,6 +956,86 @@ TEST(SoilErrors, Hydraulics) {
                {"hydraulics.region.min", 29, "has 1 component"});
   expect_error(base() + "hydraulics: {rainfall_intensity: 1e-5}\n",
                {"hydraulics", 26, "the case has no soil material"});
+}
+
+TEST(SoilErrors, DrainedWallsInitialisationAndDamping) {
+  // A drained wall is a boundary body with a pore pressure above -K_w, in a case with soil.
+  expect_error(soil_with_line(22, "    shape: {box: {min: [0, -0.08], max: [0.24, 0]}}\n    pore_pressure: -3e6"),
+               {"bodies[0].pore_pressure", 23, "must be above -K_w = -2000000 Pa"});
+  expect_error(soil_with_line(26, "    shape: {box: {min: [0, 0], max: [0.24, 1.0]}}\n    pore_pressure: 0"),
+               {"bodies[1].pore_pressure", 27, "give it on a boundary body"});
+  expect_error(with_line(15, "    shape: {box: {min: [-0.1, -0.1], max: [1.1, 0.6]}}\n    pore_pressure: 0"),
+               {"bodies[0].pore_pressure", 16, "the case has no soil material"});
+  // The initialisation stage: a positive duration, known keys, constant conditions.
+  expect_error(soil_base() + "initialisation: {duration: 0}\n",
+               {"initialisation.duration", 33, "must be greater than 0"});
+  expect_error(soil_base() + "initialisation:\n  duration: 20\n  time: 5\n",
+               {"initialisation.time", 35, "unknown key (known here: duration, hydraulics)"});
+  expect_error(soil_base() + "initialisation:\n  duration: 20\n  hydraulics: {rainfall: [{time: 0, intensity: 0}]}\n",
+               {"initialisation.hydraulics.rainfall", 35, "the initialisation stage holds constant conditions"});
+  expect_error(soil_base() + "initialisation:\n  duration: 20\n  hydraulics: {surface_pressure: 0, rainfall_intensity: 1e-6}\n",
+               {"initialisation.hydraulics.surface_pressure", 35, "cannot be given together with rain"});
+  expect_error(soil_base() + "initialisation:\n  duration: 20\n  hydraulics: {surface_pressure: -2e6}\n",
+               {"initialisation.hydraulics.surface_pressure", 35, "must be above -K_w = -2000000 Pa"});
+  expect_error(base() + "initialisation: {duration: 1, hydraulics: {surface_pressure: 0}}\n",
+               {"initialisation.hydraulics", 26, "the case has no soil material"});
+  expect_error(soil_with_line(30, "  surface_pressure: 0"),
+               {"hydraulics.surface_pressure", 30, "cannot be given together with rain"});
+  // The skeleton's damping: not negative, not on a rigid soil.
+  expect_error(soil_with_line(16, "      water_bulk_modulus: 2e6\n      damping: -0.1"),
+               {"materials[0].soil.damping", 17, "must not be negative"});
+  std::vector<std::string> lines = kSoilBase;
+  lines[17] = "      rigid: true\n      damping: 0.1";
+  expect_error(join(lines), {"materials[0].soil.damping", 19, "a rigid soil does not move"});
+}
+
+TEST(SoilCases, InitialisationStageAndDrainedWallReachTheEngine) {
+  const pb::ScenarioSpec spec = load_case_text(
+      soil_with_line(22, "    shape: {box: {min: [0, -0.08], max: [0.24, 0]}}\n    pore_pressure: 500") +
+      "initialisation: {duration: 20, hydraulics: {surface_pressure: -100}}\n");
+  ASSERT_TRUE(spec.has_initialisation());
+  EXPECT_DOUBLE_EQ(spec.initialisation().duration(), 20);
+  const HydraulicForcing init = initialisation_forcing(spec);
+  EXPECT_TRUE(init.has_surface_pressure);
+  EXPECT_DOUBLE_EQ(init.surface_pressure, -100);
+  EXPECT_DOUBLE_EQ(init.rainfall_intensity, 0);
+  const HydraulicForcing main = hydraulic_forcing(spec, 0.0);
+  EXPECT_FALSE(main.has_surface_pressure);
+  EXPECT_DOUBLE_EQ(main.rainfall_intensity, 1e-5);
+  const ParticleSet set = build_particle_set(spec);
+  const EngineConfig config = engine_config(spec, set.particles, Precision::double_precision);
+  // The engine starts under the stage's conditions; the base is a drained wall at 500 Pa.
+  EXPECT_TRUE(config.forcing.has_surface_pressure);
+  ASSERT_EQ(config.drained_walls.size(), 1u);
+  EXPECT_EQ(config.drained_walls[0].body, 0u);
+  EXPECT_DOUBLE_EQ(config.drained_walls[0].pore_pressure, 500);
+  EXPECT_DOUBLE_EQ(config.soils.at(0).damping, 0);  // off by default
+}
+
+TEST(SoilCases, LiakopoulosCaseFollowsTable1) {
+  const pb::ScenarioSpec spec = load_case_file(kCases + "liakopoulos.yaml");
+  const pb::SoilModel& soil = spec.materials(0).soil();
+  EXPECT_DOUBLE_EQ(soil.grain_density(), 2000);
+  EXPECT_DOUBLE_EQ(soil.porosity(), 0.2975);
+  EXPECT_DOUBLE_EQ(soil.water_bulk_modulus(), 2e6);
+  EXPECT_DOUBLE_EQ(soil.saturated_conductivity(), 4.41e-6);
+  EXPECT_DOUBLE_EQ(soil.mechanical().linear_elastic().youngs_modulus(), 1.3e6);
+  EXPECT_DOUBLE_EQ(soil.mechanical().linear_elastic().poisson_ratio(), 0.4);
+  EXPECT_TRUE(soil.hydraulic().has_liakopoulos());
+  EXPECT_DOUBLE_EQ(soil.damping(), 0.1);
+  EXPECT_DOUBLE_EQ(spec.dp(), 0.02);
+  ASSERT_TRUE(spec.bodies(0).has_pore_pressure());
+  EXPECT_DOUBLE_EQ(spec.bodies(0).pore_pressure(), 0);
+  EXPECT_DOUBLE_EQ(spec.initialisation().duration(), 20);
+  EXPECT_TRUE(spec.initialisation().hydraulics().has_surface_pressure());
+  EXPECT_FALSE(spec.hydraulics().has_surface_pressure());
+  EXPECT_DOUBLE_EQ(spec.hydraulics().rainfall_intensity(), 0);
+  EXPECT_EQ(spec.probes(0).field(), "pore_pressure");
+  EXPECT_EQ(spec.probes(1).field(), "displacement_z");
+  // The periodic width spans 6.3 h down to dp = 0.05, in whole spacings of 0.02, 0.025 and 0.05.
+  const double width = spec.domain().max(0) - spec.domain().min(0);
+  EXPECT_GE(width, 6.3 * 1.3 * 0.05);
+  for (double dp : {0.02, 0.025, 0.05}) EXPECT_NEAR(std::remainder(width, dp), 0.0, 1e-12) << dp;
 }
 
 TEST(SoilErrors, SoilProbes) {

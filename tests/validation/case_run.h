@@ -1,5 +1,6 @@
 // Runs a case file through the same path as `cascade run` (loader → particle builder → engine) for
-// validation tests, without writing files.
+// validation tests, without writing files. A case's initialisation stage runs in the constructor,
+// as the runner runs it before t = 0.
 #pragma once
 
 #include <memory>
@@ -27,7 +28,9 @@ struct CaseRun {
     set = build_particle_set(spec);
     config = engine_config(spec, set.particles, precision);
     engine = make_engine(config, set.particles);
+    initialisation_steps = run_initialisation(spec, *engine);
   }
+  std::uint64_t initialisation_steps = 0;  // the case's initialisation stage, run by the constructor
 
   void run_until(double t) {
     while (engine->time() < t) engine->step();

@@ -2,7 +2,10 @@
 // column built here particle by particle, so that the test stands apart from the case loader:
 //  - a saturated column at hydrostatic pore pressure stays there (no spurious flow);
 //  - a local pore-pressure bump decays monotonically (ERRATA.md, row "Eq. 27a": the δ-term
-//    must diffuse), and the column returns to hydrostatic pressure.
+//    must diffuse), and the column returns to hydrostatic pressure;
+//  - a drained base (Eqs. 36, 37) under a top held at p_w = 0 carries the steady flow whose
+//    pressure is linear from the top to the prescribed value on the wall (z = 0), and the same
+//    column on an impermeable base does not.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -105,6 +108,78 @@ TEST(PoreWater, LocalBumpDecaysMonotonically) {
   std::printf("%d checks to t = %.1f s (%llu steps, dt = %.3f s): max excess %.1f Pa of %.0f Pa\n", checks,
               engine->time(), (unsigned long long)engine->step_count(), engine->last_dt(), previous, bump);
   EXPECT_LT(previous, 0.05 * bump);  // drained through the top
+}
+
+// A rigid saturated column 0.3 m high, the top held at p_w = 0 (HydraulicForcing's surface
+// pressure), on a base at z = 0 that is drained at `base_pressure` (Eqs. 36, 37) or impermeable;
+// it starts at p_w = 0 and runs to the consolidation time T_v = c_v t / H² = 1.5, past the
+// steady state (about 1% of the initial difference left, Terzaghi). Returns the layer-averaged
+// p_w and q_z with their heights.
+struct SteadyColumn {
+  std::vector<double> z, pressure, discharge;
+  double top = 0;
+};
+SteadyColumn run_drained_column(bool drained, double base_pressure) {
+  testing::SoilColumn c = saturated_column(0.0);
+  c.height = 0.3;
+  c.soil.saturated_conductivity = 1e-5;
+  c.pore_pressure = [](double) { return 0.0; };
+  c.forcing.has_surface_pressure = true;
+  c.forcing.surface_pressure = 0;
+  EngineConfig config = c.config();
+  if (drained) config.drained_walls = {{1, base_pressure}};  // body 1: the dummy layers
+  auto engine = make_engine(config, c.particles());
+  const double c_v = c.soil.saturated_conductivity * c.soil.water_bulk_modulus / (kRho * kG * c.porosity);
+  const double t_end = 1.5 * c.height * c.height / c_v;
+  while (engine->time() < t_end) engine->step();
+  const FieldFrame f = engine->frame();
+  const auto* p = f.find("pore_pressure");
+  const auto* q = f.find("seepage");
+  SteadyColumn out;
+  out.top = c.top_layer();
+  for (int k = 0; k < int(std::lround(c.height / c.dp)); ++k) {
+    const double z = (k + 0.5) * c.dp;
+    double p_sum = 0, q_sum = 0;
+    int n = 0;
+    for (std::size_t i = 0; i < f.size(); ++i)
+      if (f.phase[i] == std::uint8_t(Phase::soil) && std::fabs(f.position[3 * i + 2] - z) < 0.25 * c.dp)
+        p_sum += p->values[i], q_sum += q->values[3 * i + 2], ++n;
+    out.z.push_back(z);
+    out.pressure.push_back(p_sum / n);
+    out.discharge.push_back(q_sum / n);
+  }
+  std::printf("%s base (p_w,pres = %.0f Pa), t = %.0f s, %llu steps: p_w at the bottom layer %.1f Pa, q_z there "
+              "%.3e m/s, at the top %.3e m/s\n",
+              drained ? "drained" : "impermeable", base_pressure, engine->time(),
+              (unsigned long long)engine->step_count(), out.pressure.front(), out.discharge.front(),
+              out.discharge.back());
+  return out;
+}
+
+TEST(PoreWater, DrainedBaseCarriesTheSteadyFlow) {
+  const double k_sat = 1e-5, base_pressure = 1000.0;
+  // Steady state between p_w = 0 at the top layer and p_w,pres on the wall at z = 0: p_w linear,
+  // q_z = −K (1 + dp_w/dz / γ_w) uniform (Eq. 27b; S_w = 1 throughout since p_w >= 0).
+  const SteadyColumn drained = run_drained_column(true, base_pressure);
+  const double gradient = -base_pressure / drained.top;
+  const double q_expected = -k_sat * (1 + gradient / (kRho * kG));
+  for (std::size_t k = 0; k < drained.z.size(); ++k) {
+    const double expected = base_pressure * (1 - drained.z[k] / drained.top);
+    EXPECT_NEAR(drained.pressure[k], expected, 0.02 * base_pressure) << "z = " << drained.z[k];
+    EXPECT_NEAR(drained.discharge[k], q_expected, 0.05 * std::fabs(q_expected)) << "z = " << drained.z[k];
+  }
+  // At p_w,pres = 0 the column keeps p_w = 0 and the unit-gradient flow q_z = −K_sat (the
+  // initial state of Section 4.2).
+  const SteadyColumn open = run_drained_column(true, 0.0);
+  for (std::size_t k = 0; k < open.z.size(); ++k) {
+    EXPECT_NEAR(open.pressure[k], 0.0, 0.01 * kRho * kG * open.top) << "z = " << open.z[k];
+    EXPECT_NEAR(open.discharge[k], -k_sat, 0.05 * k_sat) << "z = " << open.z[k];
+  }
+  // On an impermeable base (Eqs. 32b, 35b) the same column fills up towards hydrostatic pressure
+  // and the flow stops.
+  const SteadyColumn closed = run_drained_column(false, 0.0);
+  EXPECT_GT(closed.pressure.front(), 0.9 * kRho * kG * (closed.top - closed.z.front()));
+  EXPECT_LT(std::fabs(closed.discharge.front()), 0.1 * k_sat);
 }
 
 }  // namespace
