@@ -26,6 +26,7 @@
 #include "server/physics/pore_water_state.h"
 #include "server/physics/renormalised_gradient.h"
 #include "server/physics/seepage.h"
+#include "server/physics/seepage_inertia.h"
 #include "server/physics/soil_view.h"
 #include "server/physics/solid_boundary_soil.h"
 #include "server/physics/solid_boundary.h"
@@ -68,8 +69,7 @@ class Simulation final : public Engine {
     density_ = std::vector<Real>(n, Real(config.water_density));  // one initial numerical density (Section 3.2)
     phase_ = host.phase;
     id_ = id;
-    // Zeros, not Eigen's uninitialised default: a deforming soil's seepage reads the acceleration
-    // of the previous evaluation (Eq. 27b), which at the first one is the state at rest.
+    // Zeros, not Eigen's uninitialised default.
     for (auto* v : {&pressure_, &density_rate_, &water_density_rate_, &step_limit_, &start_density_, &start_water_density_})
       v->assign(n, Real(0));
     for (auto* v : {&acceleration_, &water_density_gradient_, &start_position_, &start_velocity_, &listed_position_})
@@ -101,6 +101,8 @@ class Simulation final : public Engine {
     launch(SymplecticPredictor<Real, Dim>{view(), start_view(), grid_, Real(dt_)}, 0, moving_);
     update_soil_stress(0.5 * dt_);
     evaluate_rates(true);
+    if (has_soil_)
+      launch(SeepageInertiaFilter<Real, Dim>{view(), soil_view(), sph_.h, Real(dt_)}, grid_.water_end, moving_);
     launch(SymplecticCorrector<Real, Dim>{view(), start_view(), grid_, Real(dt_)}, 0, moving_);
     update_soil_stress(dt_);
     time_ += dt_;
@@ -132,7 +134,8 @@ class Simulation final : public Engine {
     add(step_limit_), add(start_density_), add(start_water_density_);
     add(phase_), add(scratch_phase_), add(ghost_wet_), add(id_), add(scratch_index_);
     add(soil_materials_), add(soil_material_), add(free_surface_), add(surface_state_);
-    add(porosity_), add(saturation_), add(seepage_), add(pressure_gradient_), add(effective_stress_), add(start_stress_);
+    add(porosity_), add(saturation_), add(seepage_), add(skeleton_acceleration_), add(pressure_gradient_);
+    add(effective_stress_), add(start_stress_);
     add(dummy_pore_pressure_), add(dummy_stress_), add(dummy_velocity_), add(wall_), add(wall_pore_pressure_);
     add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
     return bytes + cells_.bytes() + neighbours_.bytes();
@@ -268,6 +271,7 @@ class Simulation final : public Engine {
       cells_.reorder(porosity_, start_density_);
       cells_.reorder(plastic_strain_, start_density_);
       cells_.reorder(seepage_, start_position_);
+      cells_.reorder(skeleton_acceleration_, start_position_);
       cells_.reorder(effective_stress_, start_stress_);
     }
     if (has_soil_) {
@@ -346,7 +350,8 @@ class Simulation final : public Engine {
     return {raw(soil_materials_), raw(soil_material_), raw(porosity_), raw(saturation_), raw(seepage_),
             raw(dummy_pore_pressure_), raw(dummy_stress_), raw(dummy_velocity_), raw(pressure_gradient_),
             raw(free_surface_), raw(surface_state_), raw(effective_stress_), raw(velocity_gradient_),
-            raw(porosity_rate_), raw(plastic_strain_), raw(wall_), raw(wall_pore_pressure_)};
+            raw(porosity_rate_), raw(plastic_strain_), raw(skeleton_acceleration_), raw(wall_),
+            raw(wall_pore_pressure_)};
   }
 
   // σ', κ and φ at a Symplectic stage (soil_stress_update.h), from the step's start.
@@ -405,6 +410,7 @@ class Simulation final : public Engine {
     start_porosity_.assign(n, Real(0));
     saturation_.assign(n, Real(0));
     seepage_.assign(n, V::Zero());
+    skeleton_acceleration_.assign(n, V::Zero());  // at rest
     pressure_gradient_.assign(n, V::Zero());
     free_surface_.assign(n, 0);
     surface_state_.assign(n, std::uint8_t(SurfaceState::flux));
@@ -460,7 +466,7 @@ class Simulation final : public Engine {
   Vector<SoilMaterial> soil_materials_;
   Vector<std::uint8_t> soil_material_, free_surface_, surface_state_, wall_;
   Vector<Real> porosity_, saturation_, dummy_pore_pressure_, wall_pore_pressure_;
-  Vector<V> seepage_, pressure_gradient_, dummy_velocity_;
+  Vector<V> seepage_, skeleton_acceleration_, pressure_gradient_, dummy_velocity_;
   Vector<Voigt<Real>> effective_stress_, start_stress_, dummy_stress_;
   Vector<Mat<Real, Dim>> velocity_gradient_;
   Vector<Real> porosity_rate_, plastic_strain_, start_plastic_strain_, start_porosity_;

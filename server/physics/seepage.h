@@ -3,8 +3,8 @@
 // K_i = K_sat K_rel(p_c,i) (Eqs. 15, 42b, 43b), with the pressure gradient over the soil and
 // dummy neighbours of a soil particle, renormalised (renormalised_gradient.h). The drag between the
 // pore water and the skeleton is this K term (ERRATA.md); free water particles do not take part
-// (no mass exchange between free water and pore water). a_s is the soil acceleration of the last
-// evaluation, zero for a rigid skeleton. A free-surface particle under the flux condition of
+// (no mass exchange between free water and pore water). a_s is the skeleton's acceleration
+// low-passed over the last steps (seepage_inertia.h), zero for a rigid skeleton. A free-surface particle under the flux condition of
 // Eq. 39 takes the prescribed discharge (0, ..., −i) instead (pore_water_state.h).
 #pragma once
 
@@ -35,8 +35,8 @@ struct SeepageDischarge {
     const double p_c = -double(p.pressure[i]);
     const Real g = sph.gravity.norm();
     const Real conductivity = Real(m.saturated_conductivity * m.hydraulic.relative_conductivity(p_c));
-    const Vec<Real, Dim> soil_acceleration = m.rigid ? Vec<Real, Dim>::Zero() : p.acceleration[i];
-    soil.seepage[i] = conductivity / g * (-soil.pressure_gradient[i] / p.water_density[i] + sph.gravity - soil_acceleration);
+    soil.seepage[i] = conductivity / g *
+                      (-soil.pressure_gradient[i] / p.water_density[i] + sph.gravity - soil.skeleton_acceleration[i]);
   }
 };
 

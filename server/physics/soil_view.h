@@ -39,6 +39,8 @@ struct SoilView {
   Mat<Real, Dim>* velocity_gradient;   // per soil particle: L_ab = ∂v_a/∂x_b (Eqs. 26c, 26d)
   Real* porosity_rate;                 // per soil particle: dφ/dt (Eq. 26a)
   Real* plastic_strain;                // per soil particle: κ (Eq. 12)
+  Vec<Real, Dim>* skeleton_acceleration;  // per soil particle: ā_s, the low-passed a_s of Eq. 27b
+                                         // (seepage_inertia.h)
   // Drained walls (Eqs. 36, 37): per particle, 0 for an impermeable wall (and every other phase),
   // k > 0 for a dummy of the wall whose prescribed pore pressure is wall_pore_pressure[k − 1].
   const std::uint8_t* wall;
