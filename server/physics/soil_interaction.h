@@ -4,11 +4,18 @@
 // (Eq. 27a, pore_water_continuity.h) and the porosity rate (Eq. 26a), then the time-step limits
 // (Eqs. 40a-c). A material with damping adds the skeleton's velocity damping (soil_damping.h).
 //
-// Neighbours: every phase counts in Eq. 22. A water neighbour acts on the skeleton through its
-// pressure, as the total stress −p_w I of Eq. 4 in Eq. 26b (Section 3.3: the pressure condition at
-// the soil-water interface follows from the momentum equations); soil and dummy neighbours (the
-// dummy's soil side: total stress of Eq. 32a, velocity −v_g of Eq. 35a) add their total stress,
-// the viscosity, the velocity gradient and the pore water. A rigid skeleton (Section 4.1) keeps
+// Neighbours: every phase counts in Eq. 22. Soil and dummy neighbours (the dummy's soil side:
+// total stress of Eq. 32a, velocity −v_g of Eq. 35a) add their total stress, the viscosity, the
+// velocity gradient and the pore water. A water neighbour j meets the soil particle i at the
+// soil-water interface (Section 3.3: the pressure condition there follows from the momentum
+// equations) through the pore pressures only: in Eq. 26b its pair is −(S_w,i p_w,i + p_j) I, the
+// pressure parts of σ_i and of its total stress −p_j I (Eq. 4), so the skeleton's σ'_i acts only
+// between soil particles and the skeleton is traction-free at the interface; and the pore-water
+// continuity (Eq. 27a) takes the volume change of its pair, V_j (v_j − v_i)·∇_i W_ij, beside the
+// skeleton's ε̇_v. Each pair's pressure force and volume change are then the adjoint pair of the
+// water's own Eqs. 23a-b, so the pressure work across the interface is conserved; with σ'_i in the
+// pair and the water's velocity left out, a lateral mode of the interface grew from round-off at
+// a rate that rose with K_w and E (docs/physics.md, "Soil-water interface"). A rigid skeleton (Section 4.1) keeps
 // v = 0, its stress and porosity: only the pore water flows. The seepage divergence of Eq. 27a is
 // renormalised (below); the paper's standard operator misses the surface flux by half.
 #pragma once
@@ -51,6 +58,7 @@ struct SoilInteraction {
     const Real rho_w_i = p.water_density[i];
     const V grad_rho_i = p.water_density_gradient[i];
     const M stress_i = in_plane<Real, Dim>(total_stress(soil.effective_stress[i], soil.saturation[i], p.pressure[i]));
+    const Real pore_stress_i = soil.saturation[i] * p.pressure[i];  // S_w p_w of Eq. 7
     const Real c_s0 = Real(soil_sound_speed(m));
     const Real alpha_c0 = Real(m.viscosity_alpha) * c_s0;
     const std::uint32_t water_end = grid.water_end, moving_end = grid.moving_end;
@@ -63,6 +71,7 @@ struct SoilInteraction {
     V viscous = V::Zero();
     M gradient = M::Zero();       // Σ V_j (v_j − v_i) ⊗ ∇_i W_ij (Eqs. 26c, 26d)
     Real max_mu = 0;
+    Real interface_divergence = 0;  // Σ_water V_j (v_j − v_i)·∇_i W_ij (Eq. 27a at the interface)
     const std::uint32_t* list = neighbours.entries(i);
     const std::uint32_t count = neighbours.size(i);
     for (std::uint32_t k = 0; k < count; ++k) {
@@ -77,7 +86,8 @@ struct SoilInteraction {
       const V v_ij = v_i - v_j;
       divergence += velocity_divergence_pair(volume_j, v_ij, grad_w);
       if (water) {
-        force += stress_force_pair<Real, Dim>(volume_j, stress_i - p.pressure[j] * M::Identity(), grad_w);
+        force += stress_force_pair<Real, Dim>(volume_j, -(pore_stress_i + p.pressure[j]) * M::Identity(), grad_w);
+        interface_divergence -= volume_j * v_ij.dot(grad_w);
         continue;
       }
       const Voigt<Real> stress_j = dummy ? soil.dummy_stress[j - moving_end]
@@ -103,11 +113,12 @@ struct SoilInteraction {
         std::fabs(det) > Real(1e-3) ? (seepage_gradient * inverse(moment, det)).trace() : seepage_gradient.trace();
     const Real porosity = soil.porosity[i];
     const Real saturation = soil.saturation[i];
-    const Real volumetric = rigid ? Real(0) : gradient.trace();  // ε̇_v
+    const Real volumetric = rigid ? Real(0) : gradient.trace();  // ε̇_v of the skeleton
     const double p_c = -double(p.pressure[i]);
     const Real capacity = Real(m.hydraulic.capacity(p_c, double(porosity), m.water_bulk_modulus));
     const bool prescribed = soil.free_surface[i] && soil.surface_state[i] != std::uint8_t(SurfaceState::flux);
-    const Real pore_rate = pore_water_density_rate(rho_w_i, capacity, seepage_divergence, saturation, volumetric,
+    const Real pore_volumetric = rigid ? Real(0) : volumetric + interface_divergence;
+    const Real pore_rate = pore_water_density_rate(rho_w_i, capacity, seepage_divergence, saturation, pore_volumetric,
                                                    Real(m.delta) * sph.h * Real(m.pore_sound_speed), diffusion);
     p.water_density_rate[i] = prescribed ? Real(0) : pore_rate;
     const Real conductivity = Real(m.saturated_conductivity * m.hydraulic.relative_conductivity(p_c));
