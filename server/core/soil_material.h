@@ -18,6 +18,7 @@ struct SoilMaterial {
   double delta = 0.1;                 // δ of the pore-water δ-term
   double viscosity_alpha = 0.1;       // α_μ,s of the soil momentum (Eq. 26b)
   double damping = 0;                 // ξ of the skeleton's velocity damping (soil_damping.h); 0: none
+  bool viscosity_switch = false;      // α_μ,s times the compression switch (soil_viscosity_switch.h)
   bool rigid = false;                 // a fixed skeleton (Section 4.1): pore water flows through
                                       // it, the soil neither moves nor changes stress or porosity
   HydraulicModel<double> hydraulic;   // S_w(p_c), K_rel(p_c) (Eqs. 14, 15, 42, 43)

@@ -32,6 +32,7 @@
 #include "server/physics/soil_damping.h"
 #include "server/physics/soil_momentum.h"
 #include "server/physics/soil_view.h"
+#include "server/physics/soil_viscosity_switch.h"
 #include "server/physics/water_continuity.h"
 #include "server/physics/water_momentum.h"
 
@@ -134,7 +135,10 @@ struct SoilInteraction {
       return;
     }
     const Real rho_s = mixture_density(m, porosity, saturation, rho0);
-    const V acceleration = force / rho_s + viscous + sph.gravity + soil_damping_acceleration(m, rho_s, sph.h, v_i);
+    // A material with the compression switch scales the viscosity by it (soil_viscosity_switch.h).
+    const Real viscosity_switch = m.viscosity_switch ? soil_viscosity_switch<Real, Dim>(gradient, c_s0, sph.h) : Real(1);
+    const V acceleration = force / rho_s + viscosity_switch * viscous + sph.gravity +
+                           soil_damping_acceleration(m, rho_s, sph.h, v_i);
     p.density_rate[i] = rho_i * divergence;
     p.acceleration[i] = acceleration;
     soil.velocity_gradient[i] = gradient;

@@ -199,6 +199,9 @@ SoilMaterial soil_material(const pb::ScenarioSpec& spec, int material_index, con
   if (s.damping() < 0) report.error(key + ".damping", "must not be negative (is " + number(s.damping()) + "); 0 means none");
   if (s.damping() > 0 && s.rigid())
     report.error(key + ".damping", "damps the skeleton's motion, and a rigid soil does not move: leave it out");
+  if (s.viscosity_switch() && s.rigid())
+    report.error(key + ".viscosity_switch", "switches the skeleton's artificial viscosity, and a rigid soil does not "
+                                             "move: leave it out");
 
   SoilMaterial out;
   out.grain_density = s.grain_density();
@@ -210,6 +213,7 @@ SoilMaterial soil_material(const pb::ScenarioSpec& spec, int material_index, con
   out.viscosity_alpha = s.has_viscosity_alpha() ? s.viscosity_alpha() : kDefaultSoilViscosityAlpha;
   out.rigid = s.rigid();
   out.damping = s.damping();
+  out.viscosity_switch = s.viscosity_switch();
   out.hydraulic = hydraulic_model(s.hydraulic(), reference_water_density(spec) * gravity_magnitude(spec),
                                   key + ".hydraulic", report);
   out.mechanical = mechanical_model(s, key + ".mechanical", report);

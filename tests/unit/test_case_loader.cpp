@@ -987,6 +987,9 @@ TEST(SoilErrors, DrainedWallsInitialisationAndDamping) {
   std::vector<std::string> lines = kSoilBase;
   lines[17] = "      rigid: true\n      damping: 0.1";
   expect_error(join(lines), {"materials[0].soil.damping", 19, "a rigid soil does not move"});
+  // The compression switch on the artificial viscosity: not on a rigid soil either.
+  lines[17] = "      rigid: true\n      viscosity_switch: true";
+  expect_error(join(lines), {"materials[0].soil.viscosity_switch", 19, "a rigid soil does not"});
 }
 
 TEST(SoilCases, InitialisationStageAndDrainedWallReachTheEngine) {

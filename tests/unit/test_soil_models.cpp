@@ -11,6 +11,7 @@
 
 #include "server/core/small_matrix.h"
 #include "server/physics/soil/soil_model.h"
+#include "server/physics/soil_viscosity_switch.h"
 
 namespace cascade {
 namespace {
@@ -514,6 +515,32 @@ TEST(DruckerPragerPlaneStrain, BiaxialPeakMatchesMohrCoulomb) {
     EXPECT_LT(expected, q_mc);
     EXPECT_NEAR(biaxial_limit_deviator(m, p0, 8000, 1e-5), expected, 1e-8 * expected) << psi_deg;
   }
+}
+
+// ---- The compression switch on the soil's artificial viscosity ----
+
+// L_ab = ∂v_a/∂x_b: simple shear and dilation switch the viscosity off, compression keeps it.
+TEST(SoilViscositySwitch, OffInShearAndDilationOnInCompression) {
+  const double c = 65, h = 0.0075;  // the column collapse's c_s0 and h
+  const double guard = 1e-4 * c / h;
+  const auto switch_2d = [&](const Mat<double, 2>& l) { return soil_viscosity_switch<double, 2>(l, c, h); };
+  const auto switch_3d = [&](const Mat<double, 3>& l) { return soil_viscosity_switch<double, 3>(l, c, h); };
+  Mat<double, 2> shear, compression, dilation, shear_compression;
+  shear << 0, 50, 0, 0;                  // v_x = 50 z: |∇×v| = 50, ∇·v = 0
+  compression << -50, 0, 0, -50;         // ∇·v = −100
+  dilation << 50, 0, 0, 50;
+  shear_compression << -25, 50, 0, -25;  // ∇·v = −50, |∇×v| = 50
+  EXPECT_EQ(switch_2d(shear), 0.0);
+  EXPECT_EQ(switch_2d(dilation), 0.0);
+  EXPECT_DOUBLE_EQ(switch_2d(compression), 100 / (100 + guard));
+  EXPECT_DOUBLE_EQ(switch_2d(shear_compression), 50 / (100 + guard));
+  EXPECT_EQ(switch_2d(Mat<double, 2>::Zero()), 0.0);  // at rest: 0, not 0/0
+  // 3D: a rigid rotation about z is all curl (|∇×v| = 20).
+  Mat<double, 3> rotation = Mat<double, 3>::Zero();
+  rotation(0, 1) = -10;
+  rotation(1, 0) = 10;
+  EXPECT_EQ(switch_3d(rotation), 0.0);
+  EXPECT_DOUBLE_EQ(switch_3d(rotation - 10 * Mat<double, 3>::Identity()), 30 / (30 + 20 + guard));
 }
 
 // ---- SoilModel ----
