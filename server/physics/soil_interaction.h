@@ -143,8 +143,10 @@ struct SoilInteraction {
     p.acceleration[i] = acceleration;
     soil.velocity_gradient[i] = gradient;
     soil.porosity_rate[i] = (Real(1) - porosity) * volumetric;  // Eq. 26a
-    // Eq. 40b with the soil's sound speed, Eq. 40a, Eq. 40c; C0 applies after the minimum.
-    const Real dt_cv = sph.h / (c_s0 + max_mu);
+    // Eq. 40b with the P-wave speed of the soil and its pore water (soil_momentum.h), Eq. 40a,
+    // Eq. 40c; C0 applies after the minimum.
+    const Real c_s = Real(undrained_sound_speed(m, double(saturation), double(capacity), double(rho_s)));
+    const Real dt_cv = sph.h / (c_s + max_mu);
     const Real magnitude = acceleration.norm();
     const Real dt_f = magnitude > Real(0) ? std::sqrt(sph.h / magnitude) : dt_cv;
     finite = finite && std::isfinite(magnitude) && std::isfinite(max_mu);
