@@ -1,9 +1,7 @@
 // Consolidation of a deforming, saturated, linear-elastic soil column (Eqs. 7, 8, 22, 26a-d, 27a-b, 28a, 29, 32a,
 // 35a, 35b), built particle by particle (soil_column.h):
 //  - at geostatic stress and hydrostatic pore pressure it stays at rest.
-// (Terzaghi's consolidation against tests/reference/terzaghi.h is not here yet: with this column
-// under a rigid porous cap the excess pore pressure runs 7-11% of u_0 below the series solution
-// at T_v = 0.05-0.5, against the 5% the issue asks; see docs/physics.md.)
+// (Terzaghi's consolidation runs through cases/terzaghi.yaml: test_terzaghi.cpp.)
 #include <gtest/gtest.h>
 
 #include <cmath>
