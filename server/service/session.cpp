@@ -205,7 +205,12 @@ void Session::run_loop() {
     std::unique_lock lock(mutex_);
     const bool running = state_ == v1::Simulation::RUNNING && !stop_requested_;
     lock.unlock();
-    if (running) advance();
+    if (!running) continue;
+    try {
+      advance();
+    } catch (const std::exception& e) {  // the journal could not be written: nothing may go on
+      stop_running(v1::Simulation::FAILED, e.what());
+    }
   }
 
   // Stopping: a running simulation pauses at this boundary; everything still waiting is refused.
