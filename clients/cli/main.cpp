@@ -1,8 +1,10 @@
-// `cascade`: the command-line client. `cascade run` runs a case headless in this process.
+// `cascade`: the command-line client. `cascade run` runs a case headless in this process; the
+// other subcommands drive a cascade-server (remote_command.h).
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "clients/cli/remote_command.h"
 #include "clients/cli/run_command.h"
 
 namespace {
@@ -11,9 +13,20 @@ void print_usage(std::FILE* out) {
   std::fputs(
       "usage: cascade <command> [options]\n"
       "\n"
-      "commands:\n"
+      "in this process:\n"
       "  run CASE.yaml --out DIR [--set key=value]... [--until T] [--threads N] [--precision float|double]\n"
-      "        run a case headless; writes fields.h5, fields.xdmf, probes.csv, run.json into DIR\n"
+      "      [--replay JOURNAL]\n"
+      "        run a case headless; writes fields.h5, fields.xdmf, probes.csv, run.json into DIR;\n"
+      "        --replay repeats the forcing changes of a server's journal at the same steps\n"
+      "\n"
+      "on a server (--server ADDR, default $CASCADE_SERVER or 127.0.0.1:50051; --token T; --tls-ca F; --json):\n"
+      "  create CASE.yaml [--set key=value]... [--id ID]\n"
+      "  list | get SIM | start SIM | pause SIM | resume SIM | delete SIM\n"
+      "  step SIM N | run-until SIM T\n"
+      "  set SIM KEY=VALUE... [--at T]     rainfall.intensity, ponding.p_max, ponding.p_min (none: no limit)\n"
+      "  watch SIM [--interval S]\n"
+      "  query SIM FIELD... [--phase water|soil|boundary] [--box X0,Y0,Z0,X1,Y1,Z1] [--stride N] --out F.h5|F.csv\n"
+      "  probes SIM [--since T] | events SIM [--since T]\n"
       "  help  this text\n",
       out);
 }
@@ -29,6 +42,7 @@ int main(int argc, char** argv) {
   const std::string command = args.front();
   args.erase(args.begin());
   if (command == "run") return cascade::cli::run_command(args);
+  if (cascade::cli::is_remote_command(command)) return cascade::cli::remote_command(command, args);
   if (command == "help" || command == "--help" || command == "-h") {
     print_usage(stdout);
     return 0;

@@ -18,6 +18,7 @@
 #include "clients/cli/progress.h"
 #include "server/core/engine.h"
 #include "server/io/hdf5_writer.h"
+#include "server/io/journal.h"
 #include "server/io/probe_csv_writer.h"
 #include "server/io/probe_sampler.h"
 #include "server/io/run_summary.h"
@@ -25,7 +26,9 @@
 #include "server/scenario/case_error.h"
 #include "server/scenario/case_loader.h"
 #include "server/scenario/engine_setup.h"
+#include "server/scenario/forcing_message.h"
 #include "server/scenario/particle_builder.h"
+#include "server/scenario/rain_series.h"
 #include "server/scenario/soil_setup.h"
 
 namespace cascade::cli {
@@ -41,12 +44,9 @@ struct RunOptions {
   std::filesystem::path out_dir;
   std::vector<CaseOverride> overrides;
   std::optional<double> until;
+  std::filesystem::path replay;  // a journal whose forcing changes the run repeats
   int threads = 0;
-#if defined(CASCADE_DEFAULT_FLOAT)
-  Precision precision = Precision::single_precision;
-#else
-  Precision precision = Precision::double_precision;
-#endif
+  Precision precision = kBuildPrecision;
 };
 
 [[noreturn]] void usage_error(const std::string& message) { throw std::invalid_argument(message); }
@@ -72,6 +72,7 @@ RunOptions parse_options(const std::vector<std::string>& args) {
     };
     if (a == "--out") o.out_dir = value();
     else if (a == "--set") o.overrides.push_back(parse_override(value()));
+    else if (a == "--replay") o.replay = value();
     else if (a == "--until") {
       const double t = parse_number(a, value());
       if (!(t > 0)) usage_error("--until must be a positive time in seconds");
@@ -147,20 +148,60 @@ std::string format_number(double v) {
   return text;
 }
 
-// The case's rain at the engine's time (a time series changes it at step boundaries): hands a
-// changed intensity to the engine and records the change in run.json.
-void apply_forcing(const v1::ScenarioSpec& spec, Engine& engine, RunSummary& summary) {
-  if (spec.hydraulics().rainfall().empty()) return;  // constant: set once, by engine_config
-  const HydraulicForcing now = hydraulic_forcing(spec, engine.time());
-  const HydraulicForcing current = engine.forcing();
-  if (now.rainfall_intensity == current.rainfall_intensity) return;
-  HydraulicForcing next = current;  // keeps whatever else the engine holds
-  next.rainfall_intensity = now.rainfall_intensity;
+// A forcing change of the engine, recorded in run.json.
+void set_forcing(Engine& engine, const HydraulicForcing& next, const std::string& what, RunSummary& summary) {
+  summary.events.push_back({engine.time(), engine.step_count(), "forcing", what});
   engine.set_forcing(next);
-  summary.events.push_back({engine.time(), engine.step_count(), "forcing",
-                            "rainfall_intensity " + format_number(current.rainfall_intensity) + " -> " +
-                                format_number(now.rainfall_intensity) + " m/s"});
 }
+
+// The case's rain series at the engine's time (a change applies at a step boundary), unless a
+// replayed journal has steered the intensity, which replaces the series.
+void apply_rain_series(const v1::ScenarioSpec& spec, Engine& engine, RunSummary& summary) {
+  const auto due = due_rain_change(spec, engine);
+  if (!due) return;
+  HydraulicForcing next = engine.forcing();  // keeps whatever else the engine holds
+  next.rainfall_intensity = *due;
+  set_forcing(engine, next,
+              "rainfall_intensity " + format_number(engine.forcing().rainfall_intensity) + " -> " +
+                  format_number(*due) + " m/s",
+              summary);
+}
+
+// The forcing changes of a steered run's journal, each applied before the step that followed it
+// there: the same case and build then give the same bits.
+class JournalReplay {
+ public:
+  explicit JournalReplay(const std::filesystem::path& path) {
+    for (auto& entry : read_journal(path))
+      if (entry.command() == "update_forcing") changes_.push_back(std::move(entry));
+  }
+
+  // Applies the changes due at the engine's step; false once the rain intensity has been steered.
+  bool apply(Engine& engine, int dimensions, RunSummary& summary) {
+    while (next_ < changes_.size() && changes_[next_].step() <= engine.step_count()) {
+      const auto& entry = changes_[next_++];
+      if (entry.step() < engine.step_count())
+        throw std::runtime_error("journal change at step " + std::to_string(entry.step()) +
+                                 " lies before the replay's step " + std::to_string(engine.step_count()));
+      const std::vector<std::string> mask(entry.update_mask().begin(), entry.update_mask().end());
+      set_forcing(engine, updated_forcing(engine.forcing(), entry.new_forcing(), mask, dimensions),
+                  "replayed " + join(mask) + " from the journal", summary);
+      for (const auto& field : mask) intensity_steered_ |= field == "rainfall.intensity";
+    }
+    return !intensity_steered_;
+  }
+
+ private:
+  static std::string join(const std::vector<std::string>& fields) {
+    std::string text;
+    for (const auto& f : fields) text += (text.empty() ? "" : ", ") + f;
+    return text;
+  }
+
+  std::vector<v1::JournalEntry> changes_;
+  std::size_t next_ = 0;
+  bool intensity_steered_ = false;
+};
 
 }  // namespace
 
@@ -220,6 +261,8 @@ int run_command(const std::vector<std::string>& args) {
                                 "stage of " + format_number(spec.initialisation().duration()) + " s in " +
                                     std::to_string(steps) + " steps; clock and displacement restart at t = 0"});
     }
+    std::optional<JournalReplay> replay;
+    if (!options.replay.empty()) replay.emplace(options.replay);
     Progress progress(end_time, stderr);
     outputs.observe(*engine, true);
     std::size_t lost = 0;
@@ -229,7 +272,8 @@ int run_command(const std::vector<std::string>& args) {
         throw SimulationFailure("interrupted by signal " + std::to_string(g_signal.load()) + " at t = " +
                                 std::to_string(engine->time()) + " s; outputs hold the run up to there");
       }
-      apply_forcing(spec, *engine, summary);
+      const bool series_applies = !replay || replay->apply(*engine, config.dimensions, summary);
+      if (series_applies) apply_rain_series(spec, *engine, summary);
       engine->step();
       outputs.observe(*engine, false);
       progress.update(engine->time(), engine->step_count(), engine->last_dt());

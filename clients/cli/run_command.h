@@ -1,4 +1,5 @@
-// `cascade run CASE.yaml --out DIR [--set k=v]... [--until T] [--threads N] [--precision P]`:
+// `cascade run CASE.yaml --out DIR [--set k=v]... [--until T] [--threads N] [--precision P]
+// [--replay JOURNAL]`:
 // runs a case headless in this process and writes its outputs (docs/output.md).
 #pragma once
 

@@ -19,6 +19,12 @@
 namespace cascade {
 
 enum class Precision { single_precision, double_precision };
+// The build's default (CASCADE_REAL): what the runner and the server use unless told otherwise.
+#if defined(CASCADE_DEFAULT_FLOAT)
+inline constexpr Precision kBuildPrecision = Precision::single_precision;
+#else
+inline constexpr Precision kBuildPrecision = Precision::double_precision;
+#endif
 
 // A boundary body whose dummies carry a prescribed pore pressure on their soil side (a drained
 // wall, Eqs. 36, 37); the other boundary bodies are impermeable (Eqs. 32b, 35b).

@@ -70,3 +70,53 @@ def import_h5py():
         return h5py
     except ImportError:
         raise AssertionError(f"h5py is missing from {sys.executable}: install python3-h5py (Debian)")
+
+
+def fixture(name):
+    """A test case file: fixture("rain_column") → tests/cli/fixtures/rain_column.yaml."""
+    return SOURCE_DIR / "tests" / "cli" / "fixtures" / f"{name}.yaml"
+
+
+def use_python_client():
+    """Makes the Python client (clients/python) and its generated stubs (<build>/python) importable."""
+    for path in (CASCADE.parent.parent / "python", SOURCE_DIR / "clients" / "python"):
+        if str(path) not in sys.path:
+            sys.path.insert(0, str(path))
+
+
+class Server:
+    """A cascade-server process on a free loopback port (`with Server(...) as server:`); leaving the
+    block sends SIGTERM and checks that it exits 0. `server.address` is HOST:PORT."""
+
+    def __init__(self, name, *args):
+        self.data_dir = WORK_DIR / name
+        self.args = [str(CASCADE.parent / "cascade-server"), "--listen", "127.0.0.1:0", "--data-dir",
+                     str(self.data_dir), "--threads", "1", *map(str, args)]
+        self.process = None
+        self.address = None
+
+    def __enter__(self):
+        self.process = subprocess.Popen(self.args, stderr=subprocess.PIPE, text=True)
+        line = self.process.stderr.readline()
+        if "listening on " not in line:
+            self.process.kill()
+            raise AssertionError(f"cascade-server did not start: {line}{self.process.stderr.read()}")
+        self.address = line.split("listening on ")[1].split(",")[0]
+        return self
+
+    def stop(self):
+        """SIGTERM; returns (exit code, the rest of stderr)."""
+        self.process.terminate()
+        rest = self.process.communicate(timeout=30)[1]
+        return self.process.returncode, rest
+
+    def __exit__(self, *exc):
+        if self.process.poll() is None:
+            code, rest = self.stop()
+            if exc[0] is None and code != 0:
+                raise AssertionError(f"cascade-server exited {code}: {rest}")
+
+    def cli(self, *args, token=None):
+        """`cascade SUBCOMMAND ... --server ADDRESS` (the subcommand first)."""
+        extra = ["--token", token] if token else []
+        return run(*args, "--server", self.address, *extra)

@@ -1,0 +1,450 @@
+#include "clients/cli/remote_command.h"
+
+#include <google/protobuf/util/json_util.h>
+#include <grpcpp/grpcpp.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "cascade/v1/simulation.grpc.pb.h"
+#include "server/io/hdf5_writer.h"
+
+namespace cascade::cli {
+
+namespace {
+
+struct UsageError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+// A subcommand's arguments: positionals, `--key value` options (repeatable) and flags.
+struct Arguments {
+  std::vector<std::string> positional;
+  std::multimap<std::string, std::string> options;
+  bool json = false;
+
+  std::string option(const std::string& key, const std::string& fallback = {}) const {
+    const auto found = options.find(key);
+    return found == options.end() ? fallback : found->second;
+  }
+  std::vector<std::string> all(const std::string& key) const {
+    std::vector<std::string> values;
+    for (auto [it, end] = options.equal_range(key); it != end; ++it) values.push_back(it->second);
+    return values;
+  }
+};
+
+const std::set<std::string> kValueOptions = {"--server", "--token", "--tls-ca", "--set",    "--id",    "--at",
+                                             "--interval", "--phase", "--box",   "--stride", "--out", "--since"};
+
+Arguments parse_arguments(const std::vector<std::string>& args) {
+  Arguments a;
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    if (args[k] == "--json") a.json = true;
+    else if (kValueOptions.count(args[k])) {
+      if (k + 1 >= args.size()) throw UsageError(args[k] + " needs a value");
+      a.options.emplace(args[k], args[k + 1]);
+      ++k;
+    } else if (args[k].size() > 1 && args[k][0] == '-' && !std::isdigit(static_cast<unsigned char>(args[k][1])))
+      throw UsageError("unknown option '" + args[k] + "'");
+    else a.positional.push_back(args[k]);
+  }
+  return a;
+}
+
+double number(const std::string& what, const std::string& text) {
+  std::size_t used = 0;
+  try {
+    const double v = std::stod(text, &used);
+    if (used == text.size()) return v;
+  } catch (const std::exception&) {
+  }
+  throw UsageError(what + " needs a number, got '" + text + "'");
+}
+
+std::string json_of(const google::protobuf::Message& message) {
+  std::string text;
+  google::protobuf::util::JsonPrintOptions options;
+  options.preserve_proto_field_names = true;
+  (void)google::protobuf::util::MessageToJsonString(message, &text, options);
+  return text;
+}
+
+const char* code_name(grpc::StatusCode code) {
+  static const char* names[] = {"OK",         "CANCELLED",      "UNKNOWN",           "INVALID_ARGUMENT",
+                                "DEADLINE_EXCEEDED", "NOT_FOUND", "ALREADY_EXISTS",    "PERMISSION_DENIED",
+                                "RESOURCE_EXHAUSTED", "FAILED_PRECONDITION", "ABORTED", "OUT_OF_RANGE",
+                                "UNIMPLEMENTED", "INTERNAL",     "UNAVAILABLE",        "DATA_LOSS",
+                                "UNAUTHENTICATED"};
+  return unsigned(code) < sizeof names / sizeof *names ? names[code] : "UNKNOWN";
+}
+
+class Remote {
+ public:
+  Remote(const std::string& command, const Arguments& args) : command_(command), args_(args) {
+    const char* env_server = std::getenv("CASCADE_SERVER");
+    const char* env_token = std::getenv("CASCADE_TOKEN");
+    const std::string address = args.option("--server", env_server ? env_server : "127.0.0.1:50051");
+    token_ = args.option("--token", env_token ? env_token : "");
+    std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
+    if (const std::string ca = args.option("--tls-ca"); !ca.empty()) {
+      std::ifstream in(ca);
+      if (!in) throw UsageError("cannot read --tls-ca " + ca);
+      std::ostringstream pem;
+      pem << in.rdbuf();
+      grpc::SslCredentialsOptions ssl;
+      ssl.pem_root_certs = pem.str();
+      credentials = grpc::SslCredentials(ssl);
+    }
+    stub_ = v1::SimulationService::NewStub(grpc::CreateChannel(address, credentials));
+  }
+
+  void prepare(grpc::ClientContext& context) const {
+    if (!token_.empty()) context.AddMetadata("authorization", "Bearer " + token_);
+  }
+  // Prints a refusal; true when the call succeeded.
+  bool ok(const grpc::Status& status) const {
+    if (status.ok()) return true;
+    std::fprintf(stderr, "cascade %s: %s: %s\n", command_.c_str(), code_name(status.error_code()),
+                 status.error_message().c_str());
+    return false;
+  }
+  // The simulation name of positional argument 0 (an ID alone gets its simulations/ prefix).
+  std::string simulation() const {
+    if (args_.positional.empty()) throw UsageError(command_ + " needs a simulation name (simulations/ID)");
+    const std::string& name = args_.positional.front();
+    return name.rfind("simulations/", 0) == 0 ? name : "simulations/" + name;
+  }
+  const std::string& positional(std::size_t k, const char* what) const {
+    if (args_.positional.size() <= k) throw UsageError(command_ + " needs " + what);
+    return args_.positional[k];
+  }
+
+  v1::SimulationService::Stub& stub() { return *stub_; }
+  const Arguments& args() const { return args_; }
+  const std::string& command() const { return command_; }
+
+ private:
+  std::string command_;
+  const Arguments& args_;
+  std::string token_;
+  std::unique_ptr<v1::SimulationService::Stub> stub_;
+};
+
+const char* state_name(v1::Simulation::State state) {
+  return v1::Simulation::State_Name(state).c_str();
+}
+
+void print_simulation(const v1::Simulation& s) {
+  std::printf("%s  %s  %s  t = %.6g s of %.6g, step %llu, %llu particles%s%s\n", s.name().c_str(),
+              s.case_name().c_str(), state_name(s.state()), s.status().time(), s.end_time(),
+              static_cast<unsigned long long>(s.status().step()), static_cast<unsigned long long>(s.particle_count()),
+              s.failure_reason().empty() ? "" : "  failure: ", s.failure_reason().c_str());
+}
+
+// A unary call whose reply is a Simulation.
+template <typename Request>
+int simulation_call(Remote& remote, Request request,
+                    grpc::Status (v1::SimulationService::Stub::*method)(grpc::ClientContext*, const Request&, v1::Simulation*)) {
+  grpc::ClientContext context;
+  remote.prepare(context);
+  v1::Simulation reply;
+  if (!remote.ok((remote.stub().*method)(&context, request, &reply))) return 1;
+  if (remote.args().json) std::puts(json_of(reply).c_str());
+  else print_simulation(reply);
+  return 0;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw UsageError("cannot read " + path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+int create(Remote& remote) {
+  v1::CreateSimulationRequest request;
+  request.set_case_yaml(read_text(remote.positional(0, "a case file")));
+  for (const auto& o : remote.args().all("--set")) request.add_overrides(o);
+  request.set_simulation_id(remote.args().option("--id"));
+  grpc::ClientContext context;
+  remote.prepare(context);
+  v1::Simulation reply;
+  if (!remote.ok(remote.stub().CreateSimulation(&context, request, &reply))) return 1;
+  if (remote.args().json) std::puts(json_of(reply).c_str());
+  else print_simulation(reply);
+  return 0;
+}
+
+int list(Remote& remote) {
+  grpc::ClientContext context;
+  remote.prepare(context);
+  v1::ListSimulationsResponse reply;
+  if (!remote.ok(remote.stub().ListSimulations(&context, {}, &reply))) return 1;
+  if (remote.args().json) std::puts(json_of(reply).c_str());
+  else
+    for (const auto& s : reply.simulations()) print_simulation(s);
+  return 0;
+}
+
+int set_forcing(Remote& remote) {
+  v1::UpdateForcingRequest request;
+  request.set_name(remote.simulation());
+  if (remote.args().positional.size() < 2) throw UsageError("set needs KEY=VALUE (rainfall.intensity, ponding.p_max, ponding.p_min)");
+  for (std::size_t k = 1; k < remote.args().positional.size(); ++k) {
+    const std::string& pair = remote.args().positional[k];
+    const auto eq = pair.find('=');
+    if (eq == std::string::npos) throw UsageError("set needs KEY=VALUE, got '" + pair + "'");
+    const std::string key = pair.substr(0, eq), value = pair.substr(eq + 1);
+    auto* f = request.mutable_forcing();
+    if (key == "rainfall.intensity") f->mutable_rainfall()->set_intensity(number(key, value));
+    else if (key == "ponding.p_max") f->mutable_ponding()->set_p_max(number(key, value));
+    else if (key == "ponding.p_min") {
+      if (value != "none") f->mutable_ponding()->set_p_min(number(key, value));
+    } else throw UsageError("set: '" + key + "' is not steerable here (rainfall.intensity, ponding.p_max, ponding.p_min)");
+    request.mutable_update_mask()->add_paths(key);
+  }
+  if (const std::string at = remote.args().option("--at"); !at.empty()) request.set_effective_time(number("--at", at));
+  grpc::ClientContext context;
+  remote.prepare(context);
+  v1::UpdateForcingResponse reply;
+  if (!remote.ok(remote.stub().UpdateForcing(&context, request, &reply))) return 1;
+  if (remote.args().json) std::puts(json_of(reply).c_str());
+  else
+    std::printf("%s: from step %llu (t = %.9g s): %s\n", request.name().c_str(),
+                static_cast<unsigned long long>(reply.effective_step()), reply.effective_time(),
+                reply.forcing().ShortDebugString().c_str());
+  return 0;
+}
+
+int watch(Remote& remote) {
+  v1::WatchSimulationRequest request;
+  request.set_name(remote.simulation());
+  if (const std::string s = remote.args().option("--interval"); !s.empty()) request.set_interval_seconds(number("--interval", s));
+  grpc::ClientContext context;
+  remote.prepare(context);
+  auto reader = remote.stub().WatchSimulation(&context, request);
+  v1::WatchSimulationResponse update;
+  while (reader->Read(&update)) {
+    if (remote.args().json) {
+      std::puts(json_of(update).c_str());
+    } else if (update.has_status()) {
+      const auto& s = update.status();
+      std::printf("%s  t = %.6g s  step %llu  dt = %.3g s  %.1f steps/s  KE = %.4g J  max soil speed %.3g m/s\n",
+                  state_name(s.state()), s.time(), static_cast<unsigned long long>(s.step()), s.dt(),
+                  s.steps_per_second(), s.kinetic_energy(), s.max_soil_speed());
+    } else {
+      const auto& e = update.event();
+      std::printf("event  t = %.6g s  step %llu  %s: %s (%s)\n", e.time(), static_cast<unsigned long long>(e.step()),
+                  e.kind().c_str(), e.message().c_str(), e.caller().c_str());
+    }
+    std::fflush(stdout);
+  }
+  return remote.ok(reader->Finish()) ? 0 : 1;
+}
+
+// The chunks of a query as one frame.
+FieldFrame assemble(const std::vector<v1::FieldChunk>& chunks) {
+  FieldFrame frame;
+  for (const auto& chunk : chunks) {
+    frame.time = chunk.time();
+    frame.step = chunk.step();
+    frame.dimensions = int(chunk.dimensions());
+    frame.id.insert(frame.id.end(), chunk.id().begin(), chunk.id().end());
+    frame.position.insert(frame.position.end(), chunk.position().begin(), chunk.position().end());
+    for (auto p : chunk.phase()) frame.phase.push_back(std::uint8_t(p));
+    for (int k = 0; k < chunk.fields_size(); ++k) {
+      const auto& values = chunk.fields(k);
+      if (frame.fields.size() <= std::size_t(k))
+        frame.fields.push_back({values.name(), values.units(), int(values.components()), {}});
+      auto& field = frame.fields[std::size_t(k)].values;
+      field.insert(field.end(), values.values().begin(), values.values().end());
+    }
+  }
+  return frame;
+}
+
+void write_csv(const FieldFrame& frame, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out << "id,phase,x,y,z";
+  for (const auto& f : frame.fields)
+    for (int c = 0; c < f.components; ++c) out << ',' << f.name << (f.components > 1 ? "_" + std::to_string(c) : "");
+  out << '\n';
+  char text[32];
+  auto put = [&](double v) {
+    std::snprintf(text, sizeof text, ",%.17g", v);
+    out << text;
+  };
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    out << frame.id[i] << ',' << int(frame.phase[i]);
+    for (int a = 0; a < 3; ++a) put(frame.position[3 * i + a]);
+    for (const auto& f : frame.fields)
+      for (int c = 0; c < f.components; ++c) put(f.values[i * std::size_t(f.components) + c]);
+    out << '\n';
+  }
+}
+
+int query(Remote& remote) {
+  v1::QueryFieldsRequest request;
+  request.set_name(remote.simulation());
+  for (std::size_t k = 1; k < remote.args().positional.size(); ++k) request.add_fields(remote.args().positional[k]);
+  request.set_phase(remote.args().option("--phase"));
+  if (const std::string box = remote.args().option("--box"); !box.empty()) {
+    std::vector<double> v;
+    std::stringstream parts(box);
+    for (std::string part; std::getline(parts, part, ',');) v.push_back(number("--box", part));
+    if (v.size() != 6) throw UsageError("--box needs X0,Y0,Z0,X1,Y1,Z1");
+    for (int a = 0; a < 3; ++a) {
+      request.mutable_box()->add_min(v[std::size_t(a)]);
+      request.mutable_box()->add_max(v[std::size_t(a) + 3]);
+    }
+  }
+  if (const std::string s = remote.args().option("--stride"); !s.empty()) {
+    const double stride = number("--stride", s);
+    if (!(stride >= 0 && stride <= 4e9 && stride == std::floor(stride))) throw UsageError("--stride needs a whole number");
+    request.set_stride(std::uint32_t(stride));
+  }
+  const std::string out = remote.args().option("--out");
+  const bool csv = out.size() > 4 && out.substr(out.size() - 4) == ".csv";
+  const bool h5 = out.size() > 3 && out.substr(out.size() - 3) == ".h5";
+  if (!csv && !h5) throw UsageError("query needs --out FILE.h5 or FILE.csv");
+  grpc::ClientContext context;
+  remote.prepare(context);
+  auto reader = remote.stub().QueryFields(&context, request);
+  std::vector<v1::FieldChunk> chunks;
+  for (v1::FieldChunk chunk; reader->Read(&chunk);) chunks.push_back(std::move(chunk));
+  if (!remote.ok(reader->Finish())) return 1;
+  const FieldFrame frame = assemble(chunks);
+  if (csv) write_csv(frame, out);
+  else Hdf5FieldWriter(out).write(frame);
+  if (remote.args().json)
+    std::printf("{\"file\": \"%s\", \"particles\": %zu, \"time\": %.17g, \"step\": %llu, \"chunks\": %zu}\n", out.c_str(),
+                frame.size(), frame.time, static_cast<unsigned long long>(frame.step), chunks.size());
+  else
+    std::printf("%s: %zu particles at t = %.9g s (step %llu) in %s\n", request.name().c_str(), frame.size(), frame.time,
+                static_cast<unsigned long long>(frame.step), out.c_str());
+  return 0;
+}
+
+int probes(Remote& remote) {
+  v1::ListProbesRequest request;
+  request.set_name(remote.simulation());
+  if (const std::string s = remote.args().option("--since"); !s.empty()) request.set_since_time(number("--since", s));
+  else request.set_since_time(-INFINITY);
+  grpc::ClientContext context;
+  remote.prepare(context);
+  v1::ListProbesResponse reply;
+  if (!remote.ok(remote.stub().ListProbes(&context, request, &reply))) return 1;
+  if (remote.args().json) {
+    std::puts(json_of(reply).c_str());
+    return 0;
+  }
+  std::printf("time");
+  for (const auto& name : reply.probe_names()) std::printf(",%s", name.c_str());
+  std::printf("\n");
+  for (const auto& sample : reply.samples()) {
+    std::printf("%.17g", sample.time());
+    for (double v : sample.values()) std::printf(",%.17g", v);
+    std::printf("\n");
+  }
+  return 0;
+}
+
+int events(Remote& remote) {
+  v1::ListEventsRequest request;
+  request.set_name(remote.simulation());
+  if (const std::string s = remote.args().option("--since"); !s.empty()) request.set_since_time(number("--since", s));
+  grpc::ClientContext context;
+  remote.prepare(context);
+  v1::ListEventsResponse reply;
+  if (!remote.ok(remote.stub().ListEvents(&context, request, &reply))) return 1;
+  if (remote.args().json) std::puts(json_of(reply).c_str());
+  else
+    for (const auto& e : reply.events())
+      std::printf("t = %.9g s  step %llu  %s: %s (%s)\n", e.time(), static_cast<unsigned long long>(e.step()),
+                  e.kind().c_str(), e.message().c_str(), e.caller().c_str());
+  return 0;
+}
+
+int remove(Remote& remote) {
+  v1::DeleteSimulationRequest request;
+  request.set_name(remote.simulation());
+  grpc::ClientContext context;
+  remote.prepare(context);
+  google::protobuf::Empty reply;
+  if (!remote.ok(remote.stub().DeleteSimulation(&context, request, &reply))) return 1;
+  if (remote.args().json) std::printf("{\"deleted\": \"%s\"}\n", request.name().c_str());
+  else std::printf("deleted %s\n", request.name().c_str());
+  return 0;
+}
+
+template <typename Request>
+Request named(const Remote& remote) {
+  Request request;
+  request.set_name(remote.simulation());
+  return request;
+}
+
+using Handler = std::function<int(Remote&)>;
+
+const std::map<std::string, Handler>& handlers() {
+  using Stub = v1::SimulationService::Stub;
+  static const std::map<std::string, Handler> table = {
+      {"create", create},
+      {"list", list},
+      {"get", [](Remote& r) { return simulation_call(r, named<v1::GetSimulationRequest>(r), &Stub::GetSimulation); }},
+      {"start", [](Remote& r) { return simulation_call(r, named<v1::StartSimulationRequest>(r), &Stub::StartSimulation); }},
+      {"pause", [](Remote& r) { return simulation_call(r, named<v1::PauseSimulationRequest>(r), &Stub::PauseSimulation); }},
+      {"resume", [](Remote& r) { return simulation_call(r, named<v1::ResumeSimulationRequest>(r), &Stub::ResumeSimulation); }},
+      {"step",
+       [](Remote& r) {
+         auto request = named<v1::StepSimulationRequest>(r);
+         const double n = number("step N", r.positional(1, "a number of steps"));
+         if (!(n >= 1 && n <= 1e12 && n == std::floor(n))) throw UsageError("step needs a whole number of steps >= 1");
+         request.set_steps(std::uint64_t(n));
+         return simulation_call(r, request, &Stub::StepSimulation);
+       }},
+      {"run-until",
+       [](Remote& r) {
+         auto request = named<v1::RunSimulationUntilRequest>(r);
+         request.set_time(number("run-until T", r.positional(1, "a time in seconds")));
+         return simulation_call(r, request, &Stub::RunSimulationUntil);
+       }},
+      {"set", set_forcing},
+      {"watch", watch},
+      {"query", query},
+      {"probes", probes},
+      {"events", events},
+      {"delete", remove},
+  };
+  return table;
+}
+
+}  // namespace
+
+bool is_remote_command(const std::string& command) { return handlers().count(command) > 0; }
+
+int remote_command(const std::string& command, const std::vector<std::string>& args) {
+  try {
+    const Arguments parsed = parse_arguments(args);
+    Remote remote(command, parsed);
+    return handlers().at(command)(remote);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "cascade %s: %s\n", command.c_str(), e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cascade %s: %s\n", command.c_str(), e.what());
+    return 1;
+  }
+}
+
+}  // namespace cascade::cli

@@ -1,0 +1,96 @@
+// cascade-server: the steering server (server/app/server_options.h for its command line).
+// SIGTERM or SIGINT: every simulation pauses at its next step boundary and its journal is closed
+// with a `shutdown` entry, open streams end, and the process exits 0.
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/grpcpp.h>
+#include <grpcpp/health_check_service_interface.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "server/app/server_options.h"
+#include "server/service/simulation_service.h"
+
+namespace {
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::shared_ptr<grpc::ServerCredentials> credentials(const cascade::app::ServerOptions& options) {
+  if (options.tls_cert.empty()) return grpc::InsecureServerCredentials();
+  grpc::SslServerCredentialsOptions ssl;
+  ssl.pem_key_cert_pairs.push_back({read_file(options.tls_key), read_file(options.tls_cert)});
+  return grpc::SslServerCredentials(ssl);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace cascade;
+  app::ServerOptions options;
+  service::ServiceOptions service_options;
+  try {
+    options = app::parse_server_options({argv + 1, argv + argc});
+    std::filesystem::create_directories(options.data_dir);
+    service_options.data_dir = options.data_dir;
+    service_options.threads = options.threads;
+    service_options.device = options.device;
+    service_options.max_particles = options.max_particles;
+    service_options.max_simulations = options.max_simulations;
+    if (!options.tokens.empty()) service_options.access = service::AccessControl::from_file(options.tokens);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cascade-server: %s\n", e.what());
+    return 2;
+  }
+  if (!app::is_loopback(options.listen) && (options.tls_cert.empty() || options.tokens.empty()))
+    std::fprintf(stderr, "cascade-server: WARNING: --insecure: %s is reachable from other machines %s\n",
+                 options.listen.c_str(), options.tls_cert.empty() ? "without TLS" : "without tokens");
+
+  // Signals are taken by sigwait below, not by a handler: block them before any thread starts so
+  // that every thread inherits the mask.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  service::SimulationService simulations(std::move(service_options));
+  grpc::ServerBuilder builder;
+  int port = 0;
+  try {
+    builder.AddListeningPort(options.listen, credentials(options), &port);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cascade-server: %s\n", e.what());
+    return 2;
+  }
+  builder.SetMaxReceiveMessageSize(4 << 20);
+  builder.RegisterService(&simulations);
+  const std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
+  if (!server || port == 0) {
+    std::fprintf(stderr, "cascade-server: cannot listen on %s\n", options.listen.c_str());
+    return 1;
+  }
+  const std::string host = options.listen.substr(0, options.listen.rfind(':'));
+  std::fprintf(stderr, "cascade-server: listening on %s:%d, data in %s\n", host.c_str(), port,
+               options.data_dir.c_str());
+
+  int signal = 0;
+  sigwait(&signals, &signal);
+  std::fprintf(stderr, "cascade-server: signal %d: stopping the simulations\n", signal);
+  server->GetHealthCheckService()->SetServingStatus(false);
+  simulations.shutdown();
+  server->Shutdown(std::chrono::system_clock::now() + std::chrono::seconds(2));
+  server->Wait();
+  std::fprintf(stderr, "cascade-server: stopped\n");
+  return 0;
+}

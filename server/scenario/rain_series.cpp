@@ -1,0 +1,14 @@
+#include "server/scenario/rain_series.h"
+
+#include "server/scenario/soil_setup.h"
+
+namespace cascade {
+
+std::optional<double> due_rain_change(const v1::ScenarioSpec& spec, const Engine& engine) {
+  if (spec.hydraulics().rainfall().empty()) return std::nullopt;  // constant: set once, by engine_config
+  const double due = hydraulic_forcing(spec, engine.time()).rainfall_intensity;
+  if (due == engine.forcing().rainfall_intensity) return std::nullopt;
+  return due;
+}
+
+}  // namespace cascade

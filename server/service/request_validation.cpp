@@ -1,0 +1,144 @@
+#include "server/service/request_validation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "server/scenario/forcing_message.h"
+
+namespace cascade::service {
+
+namespace {
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
+// A box of `components` finite coordinates each, min < max on every axis.
+grpc::Status check_box(const std::string& field, const v1::Box& box, int components) {
+  if (box.min_size() != components || box.max_size() != components)
+    return invalid(field, "needs " + std::to_string(components) + " components in min and max, got " +
+                              std::to_string(box.min_size()) + " and " + std::to_string(box.max_size()));
+  for (int a = 0; a < components; ++a) {
+    const std::string axis = "[" + std::to_string(a) + "]";
+    if (!std::isfinite(box.min(a))) return invalid(field + ".min" + axis, "is not a finite number");
+    if (!std::isfinite(box.max(a))) return invalid(field + ".max" + axis, "is not a finite number");
+    if (!(box.min(a) < box.max(a)))
+      return invalid(field + ".max" + axis, "must exceed min" + axis + " (" + number(box.min(a)) + ")");
+  }
+  return grpc::Status::OK;
+}
+
+}  // namespace
+
+grpc::Status invalid(const std::string& field, const std::string& message) {
+  return {grpc::StatusCode::INVALID_ARGUMENT, field + ": " + message};
+}
+
+grpc::Status check_simulation_id(const std::string& field, const std::string& id) {
+  const bool allowed = !id.empty() && id.size() <= 63 && id.front() != '-' &&
+                       std::all_of(id.begin(), id.end(), [](char c) {
+                         return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-';
+                       });
+  if (!allowed) return invalid(field, "an id is 1 to 63 characters of a-z, 0-9 and '-', not starting with '-'");
+  return grpc::Status::OK;
+}
+
+grpc::Status check_simulation_name(const std::string& field, const std::string& name, std::string& id) {
+  const std::string prefix = "simulations/";
+  if (name.rfind(prefix, 0) != 0)
+    return invalid(field, "must be simulations/{id}, got '" + name.substr(0, 80) + "'");
+  id = name.substr(prefix.size());
+  return check_simulation_id(field, id);
+}
+
+grpc::Status check_step(const v1::StepSimulationRequest& request) {
+  if (request.steps() < 1 || request.steps() > kMaxStepsPerRequest)
+    return invalid("steps", "must be from 1 to " + std::to_string(kMaxStepsPerRequest) + ", got " +
+                                std::to_string(request.steps()));
+  return grpc::Status::OK;
+}
+
+grpc::Status check_run_until(const v1::RunSimulationUntilRequest& request, double end_time) {
+  if (!std::isfinite(request.time())) return invalid("time", "is not a finite number");
+  if (!(request.time() > 0) || request.time() > end_time)
+    return invalid("time", "must be in (0, end_time = " + number(end_time) + "] s, got " + number(request.time()));
+  return grpc::Status::OK;
+}
+
+grpc::Status check_update_forcing(const v1::UpdateForcingRequest& request, const v1::Forcing& current,
+                                  int dimensions, double end_time) {
+  const auto& paths = request.update_mask().paths();
+  if (paths.empty()) return invalid("update_mask", "names no field (steerable: rainfall.intensity, rainfall.region, ponding.p_max, ponding.p_min)");
+  bool p_max_set = false, p_min_set = false;
+  for (int k = 0; k < paths.size(); ++k) {
+    const std::string& path = paths[k];
+    const std::string field = "update_mask.paths[" + std::to_string(k) + "]";
+    if (std::find(kSteerableForcingFields.begin(), kSteerableForcingFields.end(), path) == kSteerableForcingFields.end())
+      return invalid(field, "'" + path.substr(0, 80) + "' is not steerable (rainfall.intensity, rainfall.region, ponding.p_max, ponding.p_min)");
+    if (std::count(paths.begin(), paths.end(), path) > 1) return invalid(field, "'" + path + "' is named twice");
+    const auto& f = request.forcing();
+    if (path == "rainfall.intensity") {
+      const double i = f.rainfall().intensity();
+      if (!std::isfinite(i)) return invalid("forcing.rainfall.intensity", "is not a finite number");
+      if (std::abs(i) > kMaxRainfallIntensity)
+        return invalid("forcing.rainfall.intensity", number(i) + " m/s is beyond ±" + number(kMaxRainfallIntensity) + " m/s");
+    } else if (path == "rainfall.region" && f.rainfall().has_region()) {
+      const auto status = check_box("forcing.rainfall.region", f.rainfall().region(), dimensions);
+      if (!status.ok()) return status;
+    } else if (path == "ponding.p_max") {
+      const double p = f.ponding().p_max();
+      if (!std::isfinite(p)) return invalid("forcing.ponding.p_max", "is not a finite number");
+      if (std::abs(p) > kMaxPondingPressure) return invalid("forcing.ponding.p_max", number(p) + " Pa is beyond ±1e8 Pa");
+      p_max_set = true;
+    } else if (path == "ponding.p_min" && f.ponding().has_p_min()) {
+      const double p = f.ponding().p_min();
+      if (!std::isfinite(p)) return invalid("forcing.ponding.p_min", "is not a finite number");
+      if (std::abs(p) > kMaxPondingPressure) return invalid("forcing.ponding.p_min", number(p) + " Pa is beyond ±1e8 Pa");
+      p_min_set = true;
+    }
+  }
+  const double p_max = p_max_set ? request.forcing().ponding().p_max() : current.ponding().p_max();
+  const bool has_p_min = p_min_set || (current.ponding().has_p_min() &&
+                                       std::find(paths.begin(), paths.end(), "ponding.p_min") == paths.end());
+  const double p_min = p_min_set ? request.forcing().ponding().p_min() : current.ponding().p_min();
+  if (has_p_min && !(p_min < p_max))
+    return invalid(p_min_set ? "forcing.ponding.p_min" : "forcing.ponding.p_max",
+                   "the drying limit p_min (" + number(p_min) + " Pa) must stay below p_max (" + number(p_max) + " Pa)");
+  if (request.has_effective_time()) {
+    const double t = request.effective_time();
+    if (!std::isfinite(t) || t < 0 || t > end_time)
+      return invalid("effective_time", "must be in [0, end_time = " + number(end_time) + "] s, got " + number(t));
+  }
+  return grpc::Status::OK;
+}
+
+grpc::Status check_query(const v1::QueryFieldsRequest& request) {
+  const std::string& phase = request.phase();
+  if (!phase.empty() && phase != "water" && phase != "soil" && phase != "boundary")
+    return invalid("phase", "must be water, soil, boundary or empty (all), not '" + phase.substr(0, 80) + "'");
+  if (request.has_box()) {
+    const auto status = check_box("box", request.box(), 3);
+    if (!status.ok()) return status;
+  }
+  if (request.stride() > kMaxStride)
+    return invalid("stride", "must be at most " + std::to_string(kMaxStride) + ", got " + std::to_string(request.stride()));
+  if (request.fields_size() > 64) return invalid("fields", "at most 64 names");
+  return grpc::Status::OK;
+}
+
+grpc::Status check_since_time(double since_time) {
+  if (std::isnan(since_time)) return invalid("since_time", "is NaN");
+  return grpc::Status::OK;
+}
+
+grpc::Status check_watch(const v1::WatchSimulationRequest& request) {
+  const double s = request.interval_seconds();
+  if (!std::isfinite(s)) return invalid("interval_seconds", "is not a finite number");
+  if (s != 0 && (s < kMinWatchInterval || s > kMaxWatchInterval))
+    return invalid("interval_seconds", "must be 0 (1 s) or in [0.05, 3600], got " + number(s));
+  return grpc::Status::OK;
+}
+
+}  // namespace cascade::service

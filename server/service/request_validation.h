@@ -1,0 +1,39 @@
+// Checks of request fields that need no simulation state. Each returns OK or INVALID_ARGUMENT
+// with a message that starts with the field's name (`steps: ...`, `forcing.rainfall.intensity:
+// ...`), so a client can tell which field to fix.
+#pragma once
+
+#include <grpcpp/support/status.h>
+
+#include <string>
+
+#include "cascade/v1/simulation.pb.h"
+
+namespace cascade::service {
+
+// Largest values accepted; beyond them a request is taken for a mistake.
+constexpr std::uint64_t kMaxStepsPerRequest = 10'000'000;
+constexpr double kMaxRainfallIntensity = 0.1;    // m/s (360 mm/h is over 3 times the world record)
+constexpr double kMaxPondingPressure = 1e8;      // Pa, |p_max| and |p_min|
+constexpr std::uint32_t kMaxStride = 1'000'000;
+constexpr std::size_t kMaxCaseYamlBytes = 1 << 20;
+constexpr double kMinWatchInterval = 0.05, kMaxWatchInterval = 3600;  // s of wall time
+
+grpc::Status invalid(const std::string& field, const std::string& message);
+
+// `name` is simulations/{id} with a valid id; `id` receives it.
+grpc::Status check_simulation_name(const std::string& field, const std::string& name, std::string& id);
+// [a-z0-9-], 1 to 63 characters, starting with a letter or digit.
+grpc::Status check_simulation_id(const std::string& field, const std::string& id);
+
+grpc::Status check_step(const v1::StepSimulationRequest& request);
+grpc::Status check_run_until(const v1::RunSimulationUntilRequest& request, double end_time);
+// `current`: the forcing now, for the p_min < p_max check of a change that names only one of them.
+grpc::Status check_update_forcing(const v1::UpdateForcingRequest& request, const v1::Forcing& current,
+                                  int dimensions, double end_time);
+// The field names are checked against the frame, once it is taken (field_query.h).
+grpc::Status check_query(const v1::QueryFieldsRequest& request);
+grpc::Status check_since_time(double since_time);
+grpc::Status check_watch(const v1::WatchSimulationRequest& request);
+
+}  // namespace cascade::service

@@ -1,0 +1,539 @@
+#include "server/service/session.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "server/scenario/engine_setup.h"
+#include "server/scenario/forcing_message.h"
+#include "server/scenario/rain_series.h"
+
+namespace cascade::service {
+
+namespace {
+
+// Energy and soil speed need a copy of every field: taken with the probe samples, and otherwise
+// at most this often while running, so that their cost stays a small share of the steps'.
+constexpr double kEnergySampleSeconds = 0.5;
+// Window of the steps-per-second rate.
+constexpr double kRateSeconds = 1.0;
+// The runner's end test (clients/cli/run_command.cpp): the same step ends both runs.
+constexpr double kEndSlack = 1e-12;
+
+double wall_now() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+const char* state_word(v1::Simulation::State state) {
+  switch (state) {
+    case v1::Simulation::CREATED: return "created";
+    case v1::Simulation::RUNNING: return "running";
+    case v1::Simulation::PAUSED: return "paused";
+    case v1::Simulation::COMPLETED: return "completed";
+    case v1::Simulation::FAILED: return "failed";
+    default: return "unspecified";
+  }
+}
+
+// Reads back as the same double.
+std::string exact_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+std::vector<std::string> names_of_probes(const v1::ScenarioSpec& spec) {
+  std::vector<std::string> names;
+  for (const auto& p : spec.probes()) names.push_back(p.name());
+  return names;
+}
+
+}  // namespace
+
+struct Session::ScheduledForcing {
+  v1::Forcing forcing;
+  std::vector<std::string> mask;
+  double effective_time = 0;
+  std::string caller;
+  Done done;
+};
+
+struct Session::Command {
+  enum class Kind { start, pause, resume, step, run_until, update_forcing, query };
+  Kind kind;
+  std::string caller;
+  std::uint64_t steps = 0;
+  double time = 0;
+  ScheduledForcing forcing;
+  std::optional<double> effective_time;
+  Done done;
+  FrameDone frame_done;
+};
+
+Session::Session(SessionConfig config)
+    : config_(std::move(config)), probe_names_(names_of_probes(config_.spec)) {
+  status_.set_state(v1::Simulation::CREATED);
+  forcing_ = forcing_message(config_.engine.forcing, config_.engine.dimensions);
+  thread_ = std::thread([this] { run_loop(); });
+}
+
+Session::~Session() { stop("delete", "server"); }
+
+// ---- RPC side: queue and return ----
+
+void Session::enqueue(Command command) {
+  {
+    std::lock_guard lock(mutex_);
+    if (!thread_ended_ && !stop_requested_) {
+      queue_.push_back(std::move(command));
+      wake_.notify_one();
+      return;
+    }
+  }
+  const grpc::Status gone(grpc::StatusCode::FAILED_PRECONDITION, "simulation " + config_.name + " is stopping");
+  if (command.done) command.done({gone, 0, 0});
+  if (command.frame_done) command.frame_done(gone, nullptr);
+}
+
+void Session::start(const std::string& caller, Done done) {
+  enqueue({Command::Kind::start, caller, 0, 0, {}, {}, std::move(done), {}});
+}
+void Session::pause(const std::string& caller, Done done) {
+  enqueue({Command::Kind::pause, caller, 0, 0, {}, {}, std::move(done), {}});
+}
+void Session::resume(const std::string& caller, Done done) {
+  enqueue({Command::Kind::resume, caller, 0, 0, {}, {}, std::move(done), {}});
+}
+void Session::step(std::uint64_t steps, const std::string& caller, Done done) {
+  enqueue({Command::Kind::step, caller, steps, 0, {}, {}, std::move(done), {}});
+}
+void Session::run_until(double time, const std::string& caller, Done done) {
+  enqueue({Command::Kind::run_until, caller, 0, time, {}, {}, std::move(done), {}});
+}
+void Session::update_forcing(const v1::Forcing& forcing, std::vector<std::string> mask,
+                             std::optional<double> effective_time, const std::string& caller, Done done) {
+  enqueue({Command::Kind::update_forcing, caller, 0, 0, {forcing, std::move(mask), 0, caller, nullptr}, effective_time,
+           std::move(done), {}});
+}
+void Session::query(FrameDone done) {
+  enqueue({Command::Kind::query, {}, 0, 0, {}, {}, {}, std::move(done)});
+}
+
+void Session::stop(const std::string& reason, const std::string& caller) {
+  {
+    std::lock_guard lock(mutex_);
+    if (!stop_requested_) {
+      stop_requested_ = true;
+      stop_reason_ = reason;
+      stop_caller_ = caller;
+    }
+    wake_.notify_one();
+  }
+  std::lock_guard join_lock(join_mutex_);
+  if (thread_.joinable()) thread_.join();
+}
+
+v1::Simulation Session::describe() const {
+  v1::Simulation s;
+  s.set_name(config_.name);
+  s.set_case_name(config_.spec.name());
+  s.set_end_time(config_.spec.end_time());
+  s.set_particle_count(config_.particles.size());
+  s.set_device(config_.engine.device == Device::cuda ? "cuda" : "cpu");
+  s.set_journal_path((config_.directory / "journal.jsonl").string());
+  std::lock_guard lock(mutex_);
+  s.set_state(state_);
+  s.set_failure_reason(failure_reason_);
+  *s.mutable_status() = status_;
+  *s.mutable_forcing() = forcing_;
+  return s;
+}
+
+v1::Status Session::status() const {
+  std::lock_guard lock(mutex_);
+  return status_;
+}
+
+bool Session::stopped() const {
+  std::lock_guard lock(mutex_);
+  return thread_ended_ || state_ == v1::Simulation::COMPLETED || state_ == v1::Simulation::FAILED;
+}
+
+std::vector<v1::ProbeSample> Session::probe_samples(double since_time) const {
+  std::lock_guard lock(mutex_);
+  const auto first = std::lower_bound(probe_samples_.begin(), probe_samples_.end(), since_time,
+                                      [](const v1::ProbeSample& s, double t) { return s.time() < t; });
+  return {first, probe_samples_.end()};
+}
+
+std::vector<v1::Event> Session::events(std::size_t first) const {
+  std::lock_guard lock(mutex_);
+  if (first >= events_.size()) return {};
+  return {events_.begin() + std::ptrdiff_t(first), events_.end()};
+}
+
+// ---- the solver thread ----
+
+Session::Outcome Session::here(grpc::Status status) const {
+  return {std::move(status), engine_ ? engine_->step_count() : 0, engine_ ? engine_->time() : 0.0};
+}
+
+void Session::run_loop() {
+  if (config_.threads > 0) omp_set_num_threads(config_.threads);
+  initialise();
+  for (;;) {
+    std::deque<Command> commands;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [&] { return stop_requested_ || !queue_.empty() || state_ == v1::Simulation::RUNNING; });
+      if (stop_requested_) break;
+      commands.swap(queue_);
+    }
+    for (auto& command : commands) {
+      try {
+        apply(command);
+      } catch (const std::exception& e) {  // the journal could not be written: nothing may go on
+        stop_running(v1::Simulation::FAILED, e.what());
+        const grpc::Status failed(grpc::StatusCode::INTERNAL, e.what());
+        if (command.done) command.done(here(failed));
+        if (command.frame_done) command.frame_done(failed, nullptr);
+      }
+    }
+    std::unique_lock lock(mutex_);
+    const bool running = state_ == v1::Simulation::RUNNING && !stop_requested_;
+    lock.unlock();
+    if (!running) continue;
+    try {
+      advance();
+    } catch (const std::exception& e) {  // the journal could not be written: nothing may go on
+      stop_running(v1::Simulation::FAILED, e.what());
+    }
+  }
+
+  // Stopping: a running simulation pauses at this boundary; everything still waiting is refused.
+  const grpc::Status refused(grpc::StatusCode::ABORTED, "simulation " + config_.name + " stopped (" + stop_reason_ + ")");
+  std::deque<Command> left;
+  {
+    std::lock_guard lock(mutex_);
+    if (state_ == v1::Simulation::RUNNING) state_ = v1::Simulation::PAUSED;
+    left.swap(queue_);
+  }
+  v1::JournalEntry entry;
+  entry.set_command(stop_reason_);
+  entry.set_caller(stop_caller_);
+  journal(std::move(entry));
+  publish_status();
+  for (auto& command : left) {
+    if (command.done) command.done(here(refused));
+    if (command.frame_done) command.frame_done(refused, nullptr);
+  }
+  for (auto& change : scheduled_) change.done(here(refused));
+  for (auto& waiter : target_waiters_) waiter(here());
+  std::lock_guard lock(mutex_);
+  thread_ended_ = true;
+}
+
+void Session::initialise() {
+  try {
+    journal_ = std::make_unique<JournalWriter>(config_.directory / "journal.jsonl");
+    v1::JournalEntry entry;
+    entry.set_command("create");
+    entry.set_caller(config_.caller);
+    entry.set_case_name(config_.spec.name());
+    journal(std::move(entry));
+    engine_ = config_.make_engine(config_.engine, config_.particles);
+    probes_ = std::make_unique<ProbeSampler>(config_.spec, config_.engine.h,
+                                             config_.engine.water_density * std::pow(config_.engine.dp, config_.engine.dimensions));
+    const std::uint64_t steps = run_initialisation(config_.spec, *engine_);
+    if (steps > 0) add_event("initialisation", std::to_string(steps) + " steps; the clock restarts at t = 0", "server");
+    rate_wall_ = wall_now();
+    rate_step_ = engine_->step_count();
+    sample_outputs(true);
+    add_event("state", "created", config_.caller);
+  } catch (const std::exception& e) {
+    engine_.reset();  // nothing to step: every later command is refused by its state check
+    stop_running(v1::Simulation::FAILED, std::string("set-up failed: ") + e.what());
+  }
+  publish_status();
+}
+
+bool Session::transition(const Done& done, std::initializer_list<v1::Simulation::State> from, const char* command) {
+  v1::Simulation::State state;
+  {
+    std::lock_guard lock(mutex_);
+    state = state_;
+  }
+  if (std::find(from.begin(), from.end(), state) != from.end()) return true;
+  done(here({grpc::StatusCode::FAILED_PRECONDITION,
+             std::string(command) + " needs a simulation that is " +
+                 (from.size() == 1 ? state_word(*from.begin()) : "created or paused") + "; " + config_.name + " is " +
+                 state_word(state)}));
+  return false;
+}
+
+void Session::apply(Command& c) {
+  auto entry_for = [&](const char* command, const std::string& detail) {
+    v1::JournalEntry entry;
+    entry.set_command(command);
+    entry.set_caller(c.caller);
+    entry.set_detail(detail);
+    return entry;
+  };
+  auto run = [&](const char* command, const std::string& detail) {
+    journal(entry_for(command, detail));
+    {
+      std::lock_guard lock(mutex_);
+      state_ = v1::Simulation::RUNNING;
+    }
+    add_event("state", std::string("running (") + command + (detail.empty() ? "" : " " + detail) + ")", c.caller);
+    publish_status();
+  };
+  switch (c.kind) {
+    case Command::Kind::start:
+      if (!transition(c.done, {v1::Simulation::CREATED}, "start")) return;
+      stop_step_.reset(), stop_time_.reset();
+      run("start", "");
+      c.done(here());
+      return;
+    case Command::Kind::resume:
+      if (!transition(c.done, {v1::Simulation::PAUSED}, "resume")) return;
+      stop_step_.reset(), stop_time_.reset();
+      run("resume", "");
+      c.done(here());
+      return;
+    case Command::Kind::step:
+      if (!transition(c.done, {v1::Simulation::CREATED, v1::Simulation::PAUSED}, "step")) return;
+      stop_step_ = engine_->step_count() + c.steps, stop_time_.reset();
+      run("step", std::to_string(c.steps));
+      target_waiters_.push_back(std::move(c.done));
+      return;
+    case Command::Kind::run_until:
+      if (!transition(c.done, {v1::Simulation::CREATED, v1::Simulation::PAUSED}, "run_until")) return;
+      if (!(c.time > engine_->time())) {
+        c.done(here({grpc::StatusCode::FAILED_PRECONDITION,
+                     "time: " + std::to_string(c.time) + " s is not after the simulation's time " +
+                         std::to_string(engine_->time()) + " s"}));
+        return;
+      }
+      stop_time_ = c.time, stop_step_.reset();
+      run("run_until", exact_text(c.time));
+      target_waiters_.push_back(std::move(c.done));
+      return;
+    case Command::Kind::pause: {
+      if (!transition(c.done, {v1::Simulation::RUNNING}, "pause")) return;
+      journal(entry_for("pause", ""));
+      stop_running(v1::Simulation::PAUSED, "paused");
+      c.done(here());
+      return;
+    }
+    case Command::Kind::update_forcing: {
+      {
+        std::lock_guard lock(mutex_);
+        if (state_ == v1::Simulation::COMPLETED || state_ == v1::Simulation::FAILED) {
+          c.done(here({grpc::StatusCode::FAILED_PRECONDITION,
+                       config_.name + " is " + state_word(state_) + ": its forcing can no longer change"}));
+          return;
+        }
+      }
+      c.forcing.done = std::move(c.done);
+      if (c.effective_time && *c.effective_time > engine_->time()) {
+        c.forcing.effective_time = *c.effective_time;
+        scheduled_.push_back(std::move(c.forcing));
+        return;
+      }
+      apply_forcing_change(c.forcing);
+      return;
+    }
+    case Command::Kind::query:
+      if (!engine_) {
+        c.frame_done({grpc::StatusCode::FAILED_PRECONDITION, config_.name + " has no engine: " + failure_reason_},
+                     nullptr);
+        return;
+      }
+      c.frame_done(grpc::Status::OK, std::make_shared<const FieldFrame>(engine_->frame()));
+      return;
+  }
+}
+
+void Session::apply_forcing_change(const ScheduledForcing& change) {
+  const HydraulicForcing old_forcing = engine_->forcing();
+  const int dims = config_.engine.dimensions;
+  const HydraulicForcing new_forcing = updated_forcing(old_forcing, change.forcing, change.mask, dims);
+  v1::JournalEntry entry;
+  entry.set_command("update_forcing");
+  entry.set_caller(change.caller);
+  for (const auto& field : change.mask) {
+    entry.add_update_mask(field);
+    intensity_steered_ |= field == "rainfall.intensity";
+  }
+  *entry.mutable_old_forcing() = forcing_message(old_forcing, dims);
+  *entry.mutable_new_forcing() = forcing_message(new_forcing, dims);
+  engine_->set_forcing(new_forcing);
+  journal(entry);
+  {
+    std::lock_guard lock(mutex_);
+    forcing_ = entry.new_forcing();
+  }
+  std::string what;
+  for (const auto& field : change.mask) what += (what.empty() ? "" : ", ") + field;
+  add_event("forcing", what + ": " + entry.old_forcing().ShortDebugString() + " -> " + entry.new_forcing().ShortDebugString(),
+            change.caller);
+  change.done(here());
+}
+
+void Session::advance() {
+  // Scheduled forcing changes that are due, in their order of arrival.
+  for (auto it = scheduled_.begin(); it != scheduled_.end();) {
+    if (it->effective_time <= engine_->time()) {
+      apply_forcing_change(*it);
+      it = scheduled_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  if (!intensity_steered_) {
+    if (const auto due = due_rain_change(config_.spec, *engine_)) {
+      HydraulicForcing next = engine_->forcing();
+      next.rainfall_intensity = *due;
+      engine_->set_forcing(next);
+      {
+        std::lock_guard lock(mutex_);
+        forcing_ = forcing_message(next, config_.engine.dimensions);
+      }
+      add_event("forcing", "rain series: rainfall.intensity " + std::to_string(*due) + " m/s", "case");
+    }
+  }
+  try {
+    engine_->step();
+  } catch (const std::exception& e) {
+    v1::JournalEntry entry;
+    entry.set_command("failed");
+    entry.set_caller("server");
+    entry.set_detail(e.what());
+    journal(std::move(entry));
+    stop_running(v1::Simulation::FAILED, e.what());
+    return;
+  }
+  if (engine_->lost_particles() != lost_particles_) {
+    add_event("particles_lost",
+              std::to_string(engine_->lost_particles() - lost_particles_) + " particles left the domain (" +
+                  std::to_string(engine_->lost_particles()) + " in all)",
+              "server");
+    lost_particles_ = engine_->lost_particles();
+  }
+  sample_outputs(false);
+  reach_targets();
+  publish_status();
+}
+
+void Session::reach_targets() {
+  const double end = config_.spec.end_time();
+  if (engine_->time() >= end * (1 - kEndSlack)) {
+    v1::JournalEntry entry;
+    entry.set_command("completed");
+    entry.set_caller("server");
+    journal(std::move(entry));
+    sample_outputs(true);
+    stop_running(v1::Simulation::COMPLETED, "completed at the end time");
+  } else if ((stop_step_ && engine_->step_count() >= *stop_step_) || (stop_time_ && engine_->time() >= *stop_time_)) {
+    sample_outputs(true);
+    stop_running(v1::Simulation::PAUSED, stop_step_ ? "paused after the requested steps" : "paused at the requested time");
+  }
+}
+
+void Session::stop_running(v1::Simulation::State state, const std::string& reason) {
+  {
+    std::lock_guard lock(mutex_);
+    state_ = state;
+    if (state == v1::Simulation::FAILED) failure_reason_ = reason;
+  }
+  add_event(state == v1::Simulation::FAILED ? "failure" : "state", std::string(state_word(state)) + ": " + reason, "server");
+  stop_step_.reset(), stop_time_.reset();
+  publish_status();
+  for (auto& waiter : target_waiters_) waiter(here());
+  target_waiters_.clear();
+  if (state == v1::Simulation::FAILED || state == v1::Simulation::COMPLETED) {
+    const grpc::Status never(grpc::StatusCode::FAILED_PRECONDITION,
+                             config_.name + " is " + state_word(state) + " before the change's effective time");
+    for (auto& change : scheduled_) change.done(here(never));
+    scheduled_.clear();
+  }
+}
+
+void Session::sample_outputs(bool force) {
+  const double t = engine_->time();
+  const double probe_interval = config_.spec.output().probe_interval() > 0 ? config_.spec.output().probe_interval()
+                                                                           : config_.spec.output().interval() / 10.0;
+  const bool probe_due = t >= next_probe_time_ - 1e-12 * probe_interval;
+  const bool energy_due = wall_now() - last_energy_wall_ >= kEnergySampleSeconds;
+  if (!force && !probe_due && !energy_due) return;
+  const FieldFrame frame = engine_->frame();
+  const double mass = config_.engine.water_density * std::pow(config_.engine.dp, config_.engine.dimensions);
+  const auto* velocity = frame.find("velocity");
+  double energy = 0, max_soil_speed = 0;
+  for (std::size_t i = 0; velocity && i < frame.size(); ++i) {
+    if (frame.phase[i] == std::uint8_t(Phase::boundary)) continue;
+    const double* v = &velocity->values[i * 3];
+    const double v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    energy += 0.5 * mass * v2;
+    if (frame.phase[i] == std::uint8_t(Phase::soil)) max_soil_speed = std::max(max_soil_speed, std::sqrt(v2));
+  }
+  kinetic_energy_ = energy, max_soil_speed_ = max_soil_speed;
+  last_energy_wall_ = wall_now();
+  std::lock_guard lock(mutex_);
+  if ((probe_due || force) && !probe_names_.empty() &&
+      (probe_samples_.empty() || probe_samples_.back().step() != engine_->step_count())) {
+    v1::ProbeSample sample;
+    sample.set_time(t);
+    sample.set_step(engine_->step_count());
+    for (double v : probes_->sample(frame)) sample.add_values(v);
+    probe_samples_.push_back(std::move(sample));
+    while (next_probe_time_ <= t + 1e-12 * probe_interval) next_probe_time_ += probe_interval;
+  }
+}
+
+void Session::publish_status() {
+  const double now = wall_now();
+  std::lock_guard lock(mutex_);
+  if (engine_) {
+    status_.set_time(engine_->time());
+    status_.set_step(engine_->step_count());
+    status_.set_dt(engine_->last_dt());
+    if (state_ != v1::Simulation::RUNNING) {
+      status_.set_steps_per_second(0);
+      rate_wall_ = now, rate_step_ = engine_->step_count();
+    } else if (now - rate_wall_ >= kRateSeconds) {
+      status_.set_steps_per_second(double(engine_->step_count() - rate_step_) / (now - rate_wall_));
+      rate_wall_ = now, rate_step_ = engine_->step_count();
+    }
+  }
+  status_.set_kinetic_energy(kinetic_energy_);
+  status_.set_max_soil_speed(max_soil_speed_);
+  status_.set_state(state_);
+  status_.set_wall_time(now);
+}
+
+void Session::add_event(const std::string& kind, const std::string& message, const std::string& caller) {
+  v1::Event event;
+  event.set_time(engine_ ? engine_->time() : 0.0);
+  event.set_step(engine_ ? engine_->step_count() : 0);
+  event.set_wall_time(wall_now());
+  event.set_kind(kind);
+  event.set_message(message);
+  event.set_caller(caller);
+  std::lock_guard lock(mutex_);
+  events_.push_back(std::move(event));
+}
+
+void Session::journal(v1::JournalEntry entry) {
+  if (!journal_) return;  // the journal itself could not be opened: the set-up has failed
+  entry.set_step(engine_ ? engine_->step_count() : 0);
+  entry.set_time(engine_ ? engine_->time() : 0.0);
+  entry.set_wall_time(wall_now());
+  journal_->append(entry);
+}
+
+}  // namespace cascade::service

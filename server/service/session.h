@@ -1,0 +1,149 @@
+// One simulation on the server: its Engine on a solver thread of its own, the command queue that
+// is the only way in, and what clients read (status, events, probe samples) published under a
+// mutex at step boundaries.
+//
+// RPC handlers never touch the engine: every method here queues a command and returns. The solver
+// thread applies the queued commands at the next step boundary, appends each applied one to the
+// journal (flushed to disk) and only then calls the command's `done`. Readers copy the published
+// state; they never wait for a step, and the solver never waits for them.
+#pragma once
+
+#include <grpcpp/support/status.h>
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cascade/v1/simulation.pb.h"
+#include "server/core/engine.h"
+#include "server/io/journal.h"
+#include "server/io/probe_sampler.h"
+
+namespace cascade::service {
+
+using EngineFactory = std::function<std::unique_ptr<Engine>(const EngineConfig&, const HostParticles&)>;
+
+struct SessionConfig {
+  std::string name;                  // simulations/{id}
+  v1::ScenarioSpec spec;             // defaults applied
+  HostParticles particles;           // the initial state
+  EngineConfig engine;               // from engine_config(spec, particles, ...)
+  EngineFactory make_engine;         // run on the solver thread
+  std::filesystem::path directory;   // holds journal.jsonl
+  int threads = 0;                   // OpenMP threads of the solver thread; 0: OpenMP's default
+  std::string caller;                // who created it (journal)
+};
+
+class Session {
+ public:
+  // When a command has been applied (and journaled), or refused: the step count and simulated time
+  // at that step boundary. A step or run-until command is done when its target is reached or the
+  // run stops before it.
+  struct Outcome {
+    grpc::Status status;
+    std::uint64_t step = 0;
+    double time = 0;
+  };
+  using Done = std::function<void(const Outcome&)>;
+  // A query's frame, copied at a step boundary (null with a failed status).
+  using FrameDone = std::function<void(const grpc::Status&, std::shared_ptr<const FieldFrame>)>;
+
+  // Starts the solver thread, which builds the engine and runs the case's initialisation stage.
+  explicit Session(SessionConfig config);
+  // Stops the solver thread (stop()).
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  void start(const std::string& caller, Done done);
+  void pause(const std::string& caller, Done done);
+  void resume(const std::string& caller, Done done);
+  void step(std::uint64_t steps, const std::string& caller, Done done);
+  void run_until(double time, const std::string& caller, Done done);
+  // `mask` holds validated paths of kSteerableForcingFields; without `effective_time` the change
+  // applies at the next step boundary, else at the first one at or after that time.
+  void update_forcing(const v1::Forcing& forcing, std::vector<std::string> mask, std::optional<double> effective_time,
+                      const std::string& caller, Done done);
+  void query(FrameDone done);
+
+  // Ends the solver thread at the next step boundary (a running simulation pauses there), writes
+  // `reason` (shutdown, delete) to the journal and refuses what is still queued. Idempotent.
+  void stop(const std::string& reason, const std::string& caller);
+
+  const std::string& name() const { return config_.name; }
+  const v1::ScenarioSpec& spec() const { return config_.spec; }
+  std::size_t particle_count() const { return config_.particles.size(); }
+
+  v1::Simulation describe() const;
+  v1::Status status() const;
+  bool stopped() const;  // COMPLETED, FAILED, or the solver thread has ended
+  std::vector<std::string> probe_names() const { return probe_names_; }
+  std::vector<v1::ProbeSample> probe_samples(double since_time) const;
+  // The events from index `first` on (events are only ever appended).
+  std::vector<v1::Event> events(std::size_t first = 0) const;
+
+ private:
+  struct Command;
+  struct ScheduledForcing;
+
+  void enqueue(Command command);
+  void run_loop();
+  void initialise();
+  void apply(Command& command);
+  void apply_forcing_change(const ScheduledForcing& change);
+  void advance();  // one step while running, with everything that follows it
+  void reach_targets();
+  void stop_running(v1::Simulation::State state, const std::string& reason);
+  void sample_outputs(bool force);
+  void publish_status();
+  void add_event(const std::string& kind, const std::string& message, const std::string& caller);
+  void journal(v1::JournalEntry entry);
+  bool transition(const Done& done, std::initializer_list<v1::Simulation::State> from, const char* command);
+  Outcome here(grpc::Status status = grpc::Status::OK) const;
+
+  const SessionConfig config_;
+  const std::vector<std::string> probe_names_;
+
+  // Shared with the RPC threads, under mutex_.
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<Command> queue_;
+  bool stop_requested_ = false;
+  std::string stop_reason_, stop_caller_;
+  bool thread_ended_ = false;
+  v1::Simulation::State state_ = v1::Simulation::CREATED;
+  std::string failure_reason_;
+  v1::Status status_;
+  v1::Forcing forcing_;
+  std::vector<v1::Event> events_;
+  std::vector<v1::ProbeSample> probe_samples_;
+
+  // The solver thread's own.
+  std::unique_ptr<Engine> engine_;
+  std::unique_ptr<JournalWriter> journal_;
+  std::unique_ptr<ProbeSampler> probes_;
+  std::vector<ScheduledForcing> scheduled_;
+  std::optional<std::uint64_t> stop_step_;
+  std::optional<double> stop_time_;
+  std::vector<Done> target_waiters_;
+  bool intensity_steered_ = false;  // the steered intensity replaces the case's rain series
+  double next_probe_time_ = 0;
+  double last_energy_wall_ = 0;
+  double rate_wall_ = 0;
+  std::uint64_t rate_step_ = 0;
+  std::size_t lost_particles_ = 0;
+  double kinetic_energy_ = 0, max_soil_speed_ = 0;
+
+  std::mutex join_mutex_;  // stop() may come from the delete handler and from shutdown at once
+  std::thread thread_;
+};
+
+}  // namespace cascade::service

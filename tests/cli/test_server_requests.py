@@ -1,0 +1,173 @@
+"""Bad requests to a real cascade-server, each answered with the right status code and a message
+that names the field, the server still serving afterwards; tokens and roles; limits."""
+
+import math
+import unittest
+
+import clitest
+
+clitest_token_file = """# name role token
+alice operator operator-token-0123456789
+bob viewer viewer-token-0123456789
+"""
+OPERATOR, VIEWER = "operator-token-0123456789", "viewer-token-0123456789"
+
+
+def import_api():
+    clitest.use_python_client()
+    import grpc
+    from google.protobuf import field_mask_pb2
+    from cascade.v1 import journal_pb2, simulation_pb2 as pb
+    return grpc, field_mask_pb2, journal_pb2, pb
+
+
+class BadRequests(unittest.TestCase):
+    def test_catalogue(self):
+        grpc, field_mask_pb2, journal_pb2, pb = import_api()
+        import cascade_client
+        C = grpc.StatusCode
+        with clitest.Server("bad_requests", "--max-simulations", "2", "--max-particles", "1000") as server, \
+                cascade_client.Client(server.address) as client:
+            sim = client.create(clitest.fixture("rain_column"), simulation_id="good")
+            name = sim.name
+            case = clitest.fixture("rain_column").read_text()
+
+            def forcing(mask, **kw):
+                f = journal_pb2.Forcing()
+                if "intensity" in kw:
+                    f.rainfall.intensity = kw["intensity"]
+                if "p_max" in kw:
+                    f.ponding.p_max = kw["p_max"]
+                if "p_min" in kw:
+                    f.ponding.p_min = kw["p_min"]
+                if "region" in kw:
+                    f.rainfall.region.min[:], f.rainfall.region.max[:] = kw["region"]
+                return pb.UpdateForcingRequest(name=name, forcing=f, update_mask=field_mask_pb2.FieldMask(paths=mask))
+
+            nan, inf = math.nan, math.inf
+            catalogue = [
+                ("GetSimulation", pb.GetSimulationRequest(name=""), C.INVALID_ARGUMENT, "name"),
+                ("GetSimulation", pb.GetSimulationRequest(name="good"), C.INVALID_ARGUMENT, "name"),
+                ("GetSimulation", pb.GetSimulationRequest(name="simulations/UPPER"), C.INVALID_ARGUMENT, "name"),
+                ("GetSimulation", pb.GetSimulationRequest(name="simulations/a/b"), C.INVALID_ARGUMENT, "name"),
+                ("GetSimulation", pb.GetSimulationRequest(name="simulations/" + "x" * 64), C.INVALID_ARGUMENT, "name"),
+                ("GetSimulation", pb.GetSimulationRequest(name="simulations/missing"), C.NOT_FOUND, "name"),
+                ("DeleteSimulation", pb.DeleteSimulationRequest(name="simulations/missing"), C.NOT_FOUND, "name"),
+                ("StartSimulation", pb.StartSimulationRequest(name="simulations/-x"), C.INVALID_ARGUMENT, "name"),
+                ("StepSimulation", pb.StepSimulationRequest(name=name, steps=0), C.INVALID_ARGUMENT, "steps"),
+                ("StepSimulation", pb.StepSimulationRequest(name=name, steps=10**8), C.INVALID_ARGUMENT, "steps"),
+                ("RunSimulationUntil", pb.RunSimulationUntilRequest(name=name, time=nan), C.INVALID_ARGUMENT, "time"),
+                ("RunSimulationUntil", pb.RunSimulationUntilRequest(name=name, time=inf), C.INVALID_ARGUMENT, "time"),
+                ("RunSimulationUntil", pb.RunSimulationUntilRequest(name=name, time=-1), C.INVALID_ARGUMENT, "time"),
+                ("RunSimulationUntil", pb.RunSimulationUntilRequest(name=name, time=1e9), C.INVALID_ARGUMENT, "time"),
+                ("PauseSimulation", pb.PauseSimulationRequest(name=name), C.FAILED_PRECONDITION, "pause"),
+                ("ResumeSimulation", pb.ResumeSimulationRequest(name=name), C.FAILED_PRECONDITION, "resume"),
+                ("UpdateForcing", forcing([]), C.INVALID_ARGUMENT, "update_mask"),
+                ("UpdateForcing", forcing(["rainfall.colour"]), C.INVALID_ARGUMENT, "update_mask.paths[0]"),
+                ("UpdateForcing", forcing(["rainfall.intensity", "rainfall.intensity"], intensity=1e-5),
+                 C.INVALID_ARGUMENT, "update_mask.paths[0]"),
+                ("UpdateForcing", forcing(["rainfall.intensity"], intensity=nan), C.INVALID_ARGUMENT,
+                 "forcing.rainfall.intensity"),
+                ("UpdateForcing", forcing(["rainfall.intensity"], intensity=inf), C.INVALID_ARGUMENT,
+                 "forcing.rainfall.intensity"),
+                ("UpdateForcing", forcing(["rainfall.intensity"], intensity=5.0), C.INVALID_ARGUMENT,
+                 "forcing.rainfall.intensity"),
+                ("UpdateForcing", forcing(["rainfall.intensity"], intensity=-5.0), C.INVALID_ARGUMENT,
+                 "forcing.rainfall.intensity"),
+                ("UpdateForcing", forcing(["ponding.p_max"], p_max=nan), C.INVALID_ARGUMENT, "forcing.ponding.p_max"),
+                ("UpdateForcing", forcing(["ponding.p_max"], p_max=1e12), C.INVALID_ARGUMENT, "forcing.ponding.p_max"),
+                ("UpdateForcing", forcing(["ponding.p_min"], p_min=-inf), C.INVALID_ARGUMENT, "forcing.ponding.p_min"),
+                ("UpdateForcing", forcing(["ponding.p_min"], p_min=10.0), C.INVALID_ARGUMENT, "forcing.ponding.p_min"),
+                ("UpdateForcing", forcing(["rainfall.region"], region=([0.0], [1.0])), C.INVALID_ARGUMENT,
+                 "forcing.rainfall.region"),
+                ("UpdateForcing", forcing(["rainfall.region"], region=([0.0, 1.0], [1.0, 0.5])), C.INVALID_ARGUMENT,
+                 "forcing.rainfall.region.max[1]"),
+                ("UpdateForcing", forcing(["rainfall.region"], region=([0.0, nan], [1.0, 2.0])), C.INVALID_ARGUMENT,
+                 "forcing.rainfall.region.min[1]"),
+                ("QueryFields", pb.QueryFieldsRequest(name=name, fields=["pore_pressure", "colour"]),
+                 C.INVALID_ARGUMENT, "fields[1]"),
+                ("QueryFields", pb.QueryFieldsRequest(name=name, phase="air"), C.INVALID_ARGUMENT, "phase"),
+                ("QueryFields", pb.QueryFieldsRequest(name=name, stride=10**7), C.INVALID_ARGUMENT, "stride"),
+                ("QueryFields", pb.QueryFieldsRequest(name=name, box={"min": [0, 0], "max": [1, 1]}),
+                 C.INVALID_ARGUMENT, "box"),
+                ("QueryFields", pb.QueryFieldsRequest(name=name, box={"min": [0, 0, inf], "max": [1, 1, 1]}),
+                 C.INVALID_ARGUMENT, "box.min[2]"),
+                ("QueryFields", pb.QueryFieldsRequest(name=name, box={"min": [0, 0, 1], "max": [1, 1, 0]}),
+                 C.INVALID_ARGUMENT, "box.max[2]"),
+                ("QueryFields", pb.QueryFieldsRequest(name="simulations/missing"), C.NOT_FOUND, "name"),
+                ("ListProbes", pb.ListProbesRequest(name=name, since_time=nan), C.INVALID_ARGUMENT, "since_time"),
+                ("ListEvents", pb.ListEventsRequest(name=name, since_time=nan), C.INVALID_ARGUMENT, "since_time"),
+                ("WatchSimulation", pb.WatchSimulationRequest(name=name, interval_seconds=0.001), C.INVALID_ARGUMENT,
+                 "interval_seconds"),
+                ("WatchSimulation", pb.WatchSimulationRequest(name=name, interval_seconds=nan), C.INVALID_ARGUMENT,
+                 "interval_seconds"),
+                ("CreateSimulation", pb.CreateSimulationRequest(), C.INVALID_ARGUMENT, "scenario"),
+                ("CreateSimulation", pb.CreateSimulationRequest(case_yaml=case, simulation_id="Bad_Id"),
+                 C.INVALID_ARGUMENT, "simulation_id"),
+                ("CreateSimulation", pb.CreateSimulationRequest(case_yaml=case, simulation_id="good"),
+                 C.ALREADY_EXISTS, "simulation_id"),
+                ("CreateSimulation", pb.CreateSimulationRequest(case_yaml=case + "\ncolour: red\n"),
+                 C.INVALID_ARGUMENT, "colour"),
+                ("CreateSimulation", pb.CreateSimulationRequest(case_yaml=case, overrides=["dp=-1"]),
+                 C.INVALID_ARGUMENT, "dp"),
+                ("CreateSimulation", pb.CreateSimulationRequest(case_yaml=case, overrides=["no equals sign"]),
+                 C.INVALID_ARGUMENT, "overrides[0]"),
+                ("CreateSimulation", pb.CreateSimulationRequest(case_yaml=case, overrides=["dp=0.02"]),
+                 C.RESOURCE_EXHAUSTED, "particles"),
+                ("CreateSimulation", pb.CreateSimulationRequest(case_yaml="x" * (2 << 20)),
+                 C.RESOURCE_EXHAUSTED, "case_yaml"),
+            ]
+            self.assertGreaterEqual(len(catalogue), 40)
+            for method, request, code, field in catalogue:
+                with self.subTest(method=method, field=field):
+                    with self.assertRaises(grpc.RpcError) as raised:
+                        reply = client.call(method, request)
+                        if method in ("QueryFields", "WatchSimulation"):
+                            list(reply)
+                    self.assertEqual(raised.exception.code(), code, raised.exception.details())
+                    self.assertIn(field, raised.exception.details())
+
+            # Limits on simulations: two at most.
+            client.create(clitest.fixture("rain_column"))
+            with self.assertRaises(grpc.RpcError) as raised:
+                client.create(clitest.fixture("rain_column"))
+            self.assertEqual(raised.exception.code(), C.RESOURCE_EXHAUSTED)
+            self.assertIn("simulations", raised.exception.details())
+            # Still serving, and the good simulation is unharmed.
+            sim.step(3)
+            self.assertEqual(sim.get().status.step, 3)
+
+
+class Tokens(unittest.TestCase):
+    def test_roles(self):
+        tokens = clitest.WORK_DIR / "tokens.txt"
+        tokens.write_text(clitest_token_file)
+        with clitest.Server("tokens", "--tokens", tokens) as server:
+            case = clitest.fixture("rain_column")
+            p = server.cli("list")
+            self.assertEqual(p.returncode, 1)
+            self.assertIn("UNAUTHENTICATED", p.stderr)
+            p = server.cli("list", token="wrong-token-0123456789")
+            self.assertIn("UNAUTHENTICATED", p.stderr)
+            p = server.cli("create", case, token=VIEWER)
+            self.assertEqual(p.returncode, 1)
+            self.assertIn("PERMISSION_DENIED", p.stderr)
+            p = server.cli("create", case, "--id", "t", token=OPERATOR)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            self.assertEqual(server.cli("get", "t", token=VIEWER).returncode, 0)
+            p = server.cli("set", "t", "rainfall.intensity=1e-5", token=VIEWER)
+            self.assertIn("PERMISSION_DENIED", p.stderr)
+            self.assertEqual(server.cli("step", "t", "2", token=OPERATOR).returncode, 0)
+            journal = server.data_dir / "simulations" / "t" / "journal.jsonl"
+            self.assertIn('"caller":"alice"', journal.read_text())
+
+    def test_non_loopback_needs_tls_and_tokens(self):
+        p = clitest.subprocess.run([str(clitest.CASCADE.parent / "cascade-server"), "--listen", "0.0.0.0:0",
+                                    "--data-dir", str(clitest.WORK_DIR / "open")], capture_output=True, text=True,
+                                   timeout=30)
+        self.assertEqual(p.returncode, 2)
+        self.assertIn("--tls-cert", p.stderr)
+
+
+if __name__ == "__main__":
+    clitest.main()
