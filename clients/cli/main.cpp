@@ -14,6 +14,7 @@ void print_usage(std::FILE* out) {
       "commands:\n"
       "  run CASE.yaml --out DIR [--set key=value]... [--until T] [--threads N] [--precision float|double]\n"
       "        run a case headless; writes fields.h5, fields.xdmf, probes.csv, run.json into DIR\n"
+      "        (and snapshots/NAME_NNNNNN.png when the case has output.snapshots)\n"
       "  help  this text\n",
       out);
 }
