@@ -71,7 +71,6 @@ void draw_colour_bar(RgbImage& image, const ColourBarLayout& l, const ColourMap&
   const std::vector<std::string> labels = colour_bar_labels(min, max);
   for (int k = 0; k <= 4; ++k) {
     const int row = l.bar_top + (l.bar_height - 1) * (4 - k) / 4;
-    image.fill_rect(l.bar_x + l.bar_width, row, 2 * s, s, ink);  // tick
     draw_text(image, l.label_x, row - kGlyphHeight * s / 2, labels[std::size_t(k)], s, ink);
   }
 }

@@ -1,5 +1,5 @@
 // What is drawn over the particles: the colour bar (field name and units, the map from the range's
-// minimum at the bottom to its maximum at the top, five labelled ticks) in a panel on the right,
+// minimum at the bottom to its maximum at the top, five labels beside it) in a panel on the right,
 // and the simulated time at the top left. Drawn into the read-back image, so the pixels are exact.
 #pragma once
 
