@@ -22,6 +22,7 @@
 #include "server/io/probe_csv_writer.h"
 #include "server/io/probe_sampler.h"
 #include "server/io/run_summary.h"
+#include "server/io/snapshot_writer.h"
 #include "server/io/vtk_writer.h"
 #include "server/scenario/case_error.h"
 #include "server/scenario/case_loader.h"
@@ -97,15 +98,17 @@ RunOptions parse_options(const std::vector<std::string>& args) {
 
 const char* precision_name(Precision p) { return p == Precision::single_precision ? "float" : "double"; }
 
-// Writes frames and probes at their intervals. Frames every `output.interval`, probes every
-// `output.probe_interval`, both also at the start and at the end of the run.
+// Writes frames (with their PNG snapshots) and probes at their intervals. Frames every
+// `output.interval`, probes every `output.probe_interval`, both also at the start and at the end
+// of the run.
 class Outputs {
  public:
   Outputs(const v1::ScenarioSpec& spec, const std::filesystem::path& dir, double h, double mass)
       : sampler_(spec, h, mass),
         frame_interval_(spec.output().interval()),
         probe_interval_(spec.output().probe_interval() > 0 ? spec.output().probe_interval()
-                                                          : spec.output().interval() / 10.0) {
+                                                          : spec.output().interval() / 10.0),
+        snapshots_(spec, dir / "snapshots") {
     std::filesystem::create_directories(dir);
     if (!spec.output().has_hdf5() || spec.output().hdf5()) hdf5_ = std::make_unique<Hdf5FieldWriter>(dir / "fields.h5");
     if (spec.output().vtk()) vtk_ = std::make_unique<VtkSeriesWriter>(dir / "vtk");
@@ -128,6 +131,7 @@ class Outputs {
     if (frame_due) {
       if (hdf5_) hdf5_->write(frame);
       if (vtk_) vtk_->write(frame);
+      snapshots_.write(frame);
       while (next_frame_ <= t + frame_slack) next_frame_ += frame_interval_;
       last_frame_time_ = t;
     }
@@ -140,6 +144,7 @@ class Outputs {
   std::unique_ptr<Hdf5FieldWriter> hdf5_;
   std::unique_ptr<VtkSeriesWriter> vtk_;
   std::unique_ptr<ProbeCsvWriter> probes_;
+  SnapshotWriter snapshots_;
 };
 
 std::string format_number(double v) {

@@ -9,6 +9,7 @@
 
 #include "server/scenario/case_error.h"
 #include "server/scenario/case_loader.h"
+#include "server/scenario/snapshot_fields.h"
 #include "server/scenario/soil_setup.h"
 
 namespace cascade {
@@ -362,7 +363,96 @@ class SpecChecker {
             "must not exceed numerics.max_dt (" + number(n.min_dt()) + " > " + number(n.max_dt()) + ")");
   }
 
-  void check_output() const { non_negative("output.interval", spec_.output().interval(), "end_time / 100"); }
+  void check_output() const {
+    non_negative("output.interval", spec_.output().interval(), "end_time / 100");
+    std::map<std::string, int> names;
+    for (int i = 0; i < spec_.output().snapshots_size(); ++i) {
+      const pb::Snapshot& snapshot = spec_.output().snapshots(i);
+      const std::string key = indexed("output.snapshots", i);
+      check_snapshot(key, snapshot);
+      const std::string name = !snapshot.name().empty() ? snapshot.name() : !snapshot.field().empty() ? snapshot.field() : "phase";
+      if (auto [it, added] = names.emplace(name, i); !added)
+        error(key + ".name", "'" + name + "' is already the name of " + indexed("output.snapshots", it->second) +
+                                 ": give each snapshot of the same field its own name");
+    }
+  }
+
+  // A picture of output.snapshots (docs/rendering.md).
+  void check_snapshot(const std::string& key, const pb::Snapshot& s) const {
+    const std::string& field = s.field();
+    const bool soil_field = is_soil_snapshot_field(field);
+    const bool y_component = field.size() > 2 && field.compare(field.size() - 2, 2, "_y") == 0;
+    if ((!field.empty() && !kSnapshotFields.count(field) && !soil_field) || (dims_ == 2 && y_component))
+      error(key + ".field", "'" + field + "' is not a field a snapshot can show (phase, pressure, density, velocity" +
+                                (dims_ == 2 ? "" : "/_x/_y/_z") +
+                                "; of soil: pore_pressure, saturation, porosity, plastic_strain, seepage, "
+                                "displacement, stress_xx/yy/zz/xy/yz/zx, effective_stress_xx/...)");
+    if (soil_field && soil_material_indices(spec_).empty())
+      error(key + ".field", "'" + field + "' is a field of soil particles, and the case has no soil material");
+    if (!s.phase().empty() && s.phase() != "all" && !kPhases.count(s.phase()))
+      error(key + ".phase", "'" + s.phase() + "' is not a phase (water, soil, boundary, all)");
+    for (int i = 0; i < s.translucent_size(); ++i)
+      if (!kPhases.count(s.translucent(i)))
+        error(indexed(key + ".translucent", i), "'" + s.translucent(i) + "' is not a phase (water, soil, boundary)");
+    if (!s.colour_map().empty() && s.colour_map() != "viridis" && s.colour_map() != "cool_warm")
+      error(key + ".colour_map", "'" + s.colour_map() + "' is not a colour map (viridis, cool_warm)");
+    if (s.has_min()) finite(key + ".min", s.min());
+    if (s.has_max()) finite(key + ".max", s.max());
+    if (s.has_min() && s.has_max() && !(s.max() > s.min()))
+      error(key + ".max", "must be greater than min (" + number(s.max()) + " <= " + number(s.min()) + ")");
+    check_snapshot_camera(key, s);
+    if (s.has_clip()) check_min_max(key + ".clip", s.clip().min(), s.clip().max(), "the clip box");
+    if (s.has_slab()) {
+      const pb::SnapshotSlab& slab = s.slab();
+      if (slab.axis().size() != 1 || axes().find(slab.axis()) == std::string::npos)
+        error(key + ".slab.axis", "'" + slab.axis() + "' is not an axis of this case (" + axes() + ")");
+      finite(key + ".slab.position", slab.position());
+      positive(key + ".slab.thickness", slab.thickness());
+    }
+    if (s.width() < 0 || s.width() > 3840)
+      error(key + ".width", "must be in [1, 3840] pixels (is " + std::to_string(s.width()) + "); 0 means 1280");
+    if (s.height() < 0 || s.height() > 2160)
+      error(key + ".height", "must be in [1, 2160] pixels (is " + std::to_string(s.height()) + "); 0 means 720");
+    if (!s.background().empty()) {
+      check_vector(key + ".background", s.background(), 3, "a colour (red, green, blue in [0, 1])");
+      for (int c = 0; c < 3; ++c)
+        if (s.background(c) < 0 || s.background(c) > 1)
+          error(indexed(key + ".background", c), "must be in [0, 1] (is " + number(s.background(c)) + ")");
+    }
+  }
+
+  void check_snapshot_camera(const std::string& key, const pb::Snapshot& s) const {
+    const std::string& camera = s.camera();
+    if (!camera.empty() && camera != "side" && camera != "orbit" && camera != "look_at")
+      error(key + ".camera", "'" + camera + "' is not a camera (side, orbit, look_at)");
+    if (dims_ == 2 && !camera.empty() && camera != "side")
+      error(key + ".camera", "a 2D case is drawn in its x-z plane: give side or leave camera out");
+    const bool orbit = camera == "orbit" || (camera.empty() && dims_ == 3);
+    if (s.has_orbit() && !orbit) error(key + ".orbit", "is used by the orbit camera only");
+    if (s.has_look_at() != (camera == "look_at"))
+      error(key + (s.has_look_at() ? ".look_at" : ".camera"),
+            s.has_look_at() ? "is used by the look_at camera only" : "look_at needs look_at: {eye: ..., target: ...}");
+    auto fov = [&](const std::string& k, bool has, double v) {
+      if (has && !(v > 0 && v < 180)) error(k, "must be in (0, 180) degrees (is " + number(v) + ")");
+    };
+    if (s.has_orbit()) {
+      const pb::SnapshotOrbit& o = s.orbit();
+      if (o.has_azimuth()) finite(key + ".orbit.azimuth", o.azimuth());
+      if (o.has_elevation() && !(std::fabs(o.elevation()) <= 90))
+        error(key + ".orbit.elevation", "must be in [-90, 90] degrees (is " + number(o.elevation()) + ")");
+      if (o.has_zoom()) positive(key + ".orbit.zoom", o.zoom());
+      fov(key + ".orbit.fov", o.has_fov(), o.fov());
+    }
+    if (s.has_look_at()) {
+      const pb::SnapshotLookAt& l = s.look_at();
+      check_vector(key + ".look_at.eye", l.eye(), 3, "a point in 3D");
+      check_vector(key + ".look_at.target", l.target(), 3, "a point in 3D");
+      if (!l.up().empty()) check_vector(key + ".look_at.up", l.up(), 3, "a direction in 3D");
+      if (l.eye(0) == l.target(0) && l.eye(1) == l.target(1) && l.eye(2) == l.target(2))
+        error(key + ".look_at.target", "must differ from eye");
+      fov(key + ".look_at.fov", l.has_fov(), l.fov());
+    }
+  }
 
   void check_probes() const {
     std::map<std::string, int> seen;
@@ -504,6 +594,15 @@ void apply_defaults(pb::ScenarioSpec& spec) {
   pb::Output& output = *spec.mutable_output();
   if (output.interval() == 0) output.set_interval(spec.end_time() / 100);
   if (!output.has_hdf5()) output.set_hdf5(true);
+  for (pb::Snapshot& snapshot : *output.mutable_snapshots()) {
+    if (snapshot.field().empty()) snapshot.set_field("phase");
+    if (snapshot.name().empty()) snapshot.set_name(snapshot.field());
+    if (snapshot.camera().empty()) snapshot.set_camera(spec.dimensions() == 2 ? "side" : "orbit");
+    if (snapshot.colour_map().empty())
+      snapshot.set_colour_map(is_signed_snapshot_field(snapshot.field()) ? "cool_warm" : "viridis");
+    if (snapshot.width() == 0) snapshot.set_width(1280);
+    if (snapshot.height() == 0) snapshot.set_height(720);
+  }
   for (pb::Material& m : *spec.mutable_materials()) {
     if (m.model_case() == pb::Material::kWater) {
       pb::WaterModel& w = *m.mutable_water();

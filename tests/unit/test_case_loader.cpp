@@ -1062,3 +1062,52 @@ TEST(SoilErrors, SoilProbes) {
 
 }  // namespace
 }  // namespace cascade
+
+// --- Snapshots (output.snapshots) ---------------------------------------------------------------
+
+namespace cascade {
+
+namespace {
+
+// The base case with one snapshot at line 27.
+std::string with_snapshot(const std::string& snapshot) {
+  return base() + "output:\n  snapshots:\n    - " + snapshot + "\n";
+}
+
+}  // namespace
+
+TEST(CaseSnapshots, DefaultsAreApplied) {
+  const v1::ScenarioSpec spec = load_case_text(with_snapshot("{field: pressure}"), {}, "test.yaml");
+  ASSERT_EQ(spec.output().snapshots_size(), 1);
+  const v1::Snapshot& s = spec.output().snapshots(0);
+  EXPECT_EQ(s.name(), "pressure");
+  EXPECT_EQ(s.camera(), "side");
+  EXPECT_EQ(s.colour_map(), "viridis");
+  EXPECT_EQ(s.width(), 1280);
+  EXPECT_EQ(s.height(), 720);
+  const v1::ScenarioSpec phases = load_case_text(with_snapshot("{}"), {}, "test.yaml");
+  EXPECT_EQ(phases.output().snapshots(0).field(), "phase");
+  EXPECT_EQ(phases.output().snapshots(0).name(), "phase");
+}
+
+TEST(CaseSnapshots, BadValuesNameTheKey) {
+  expect_error(with_snapshot("{field: temperature}"),
+               {"output.snapshots[0].field", 28, "'temperature' is not a field a snapshot can show"});
+  expect_error(with_snapshot("{field: pore_pressure}"),
+               {"output.snapshots[0].field", 28, "is a field of soil particles, and the case has no soil"});
+  expect_error(with_snapshot("{field: velocity_y}"), {"output.snapshots[0].field", 28, "is not a field"});
+  expect_error(with_snapshot("{width: 3841}"), {"output.snapshots[0].width", 28, "must be in [1, 3840] pixels"});
+  expect_error(with_snapshot("{height: 2161}"), {"output.snapshots[0].height", 28, "must be in [1, 2160] pixels"});
+  expect_error(with_snapshot("{camera: orbit}"), {"output.snapshots[0].camera", 28, "a 2D case is drawn in its x-z plane"});
+  expect_error(with_snapshot("{phase: mud}"), {"output.snapshots[0].phase", 28, "'mud' is not a phase"});
+  expect_error(with_snapshot("{translucent: [air]}"), {"output.snapshots[0].translucent[0]", 28, "'air' is not a phase"});
+  expect_error(with_snapshot("{colour_map: jet}"), {"output.snapshots[0].colour_map", 28, "'jet' is not a colour map"});
+  expect_error(with_snapshot("{field: pressure, min: 5, max: 1}"), {"output.snapshots[0].max", 28, "must be greater than min"});
+  expect_error(with_snapshot("{slab: {axis: y, thickness: 0.1}}"),
+               {"output.snapshots[0].slab.axis", 28, "'y' is not an axis of this case (x, z)"});
+  expect_error(with_snapshot("{background: [1, 2, 0]}"), {"output.snapshots[0].background[1]", 28, "must be in [0, 1]"});
+  expect_error(with_snapshot("{field: pressure}\n    - {field: pressure}"),
+               {"output.snapshots[1].name", 29, "'pressure' is already the name of output.snapshots[0]"});
+}
+
+}  // namespace cascade
