@@ -134,7 +134,7 @@ class Simulation final : public Engine {
     add(step_limit_), add(start_density_), add(start_water_density_);
     add(phase_), add(scratch_phase_), add(ghost_wet_), add(id_), add(scratch_index_);
     add(soil_materials_), add(soil_material_), add(free_surface_), add(surface_state_);
-    add(porosity_), add(saturation_), add(seepage_), add(skeleton_acceleration_), add(pressure_gradient_);
+    add(porosity_), add(saturation_), add(seepage_), add(skeleton_acceleration_);
     add(effective_stress_), add(start_stress_);
     add(dummy_pore_pressure_), add(dummy_stress_), add(dummy_velocity_), add(wall_), add(wall_pore_pressure_);
     add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
@@ -348,7 +348,7 @@ class Simulation final : public Engine {
 
   SoilView<Real, Dim> soil_view() {
     return {raw(soil_materials_), raw(soil_material_), raw(porosity_), raw(saturation_), raw(seepage_),
-            raw(dummy_pore_pressure_), raw(dummy_stress_), raw(dummy_velocity_), raw(pressure_gradient_),
+            raw(dummy_pore_pressure_), raw(dummy_stress_), raw(dummy_velocity_),
             raw(free_surface_), raw(surface_state_), raw(effective_stress_), raw(velocity_gradient_),
             raw(porosity_rate_), raw(plastic_strain_), raw(skeleton_acceleration_), raw(wall_),
             raw(wall_pore_pressure_)};
@@ -411,7 +411,6 @@ class Simulation final : public Engine {
     saturation_.assign(n, Real(0));
     seepage_.assign(n, V::Zero());
     skeleton_acceleration_.assign(n, V::Zero());  // at rest
-    pressure_gradient_.assign(n, V::Zero());
     free_surface_.assign(n, 0);
     surface_state_.assign(n, std::uint8_t(SurfaceState::flux));
   }
@@ -466,7 +465,7 @@ class Simulation final : public Engine {
   Vector<SoilMaterial> soil_materials_;
   Vector<std::uint8_t> soil_material_, free_surface_, surface_state_, wall_;
   Vector<Real> porosity_, saturation_, dummy_pore_pressure_, wall_pore_pressure_;
-  Vector<V> seepage_, skeleton_acceleration_, pressure_gradient_, dummy_velocity_;
+  Vector<V> seepage_, skeleton_acceleration_, dummy_velocity_;
   Vector<Voigt<Real>> effective_stress_, start_stress_, dummy_stress_;
   Vector<Mat<Real, Dim>> velocity_gradient_;
   Vector<Real> porosity_rate_, plastic_strain_, start_plastic_strain_, start_porosity_;

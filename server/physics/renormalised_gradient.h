@@ -42,7 +42,7 @@ struct RenormalisedDensityGradient {
   NeighbourListView<Real, Dim> neighbours;
   SphConstants<Real, Dim> sph;
   WaterConstants<Real> water;
-  SoilView<Real, Dim> soil{};  // PoreWater: the soil materials, the dummies' pore pressure, ⟨∇p_w⟩^L
+  SoilView<Real, Dim> soil{};  // PoreWater: the soil materials, the dummies' pore pressure; ⟨∇p_w⟩^L out
   Real rho0 = 0;               // PoreWater: ρ_w0
 
   static constexpr Real kMinDeterminant = Real(1e-3);
@@ -108,7 +108,9 @@ struct RenormalisedDensityGradient {
       const Mat<Real, Dim> pressure_correction = std::fabs(pressure_det) > kMinDeterminant
                                                      ? inverse(pressure_moment, pressure_det)
                                                      : Mat<Real, Dim>::Identity();
-      soil.pressure_gradient[i] = pressure_correction * Eigen::Map<const Vec<Real, Dim>>(pressure_sum);
+      // Into the seepage array, which SeepageDischarge (seepage.h), the next pass, turns into q_w in
+      // place: the gradient needs no array of its own.
+      soil.seepage[i] = pressure_correction * Eigen::Map<const Vec<Real, Dim>>(pressure_sum);
     }
   }
 };

@@ -1,11 +1,12 @@
 // Seepage discharge of the pore water (Eq. 27b):
 //   q_w,i = K_i/g ( −(1/ρ_w,i) ⟨∇p_w⟩_i + g − a_s,i ),
-// K_i = K_sat K_rel(p_c,i) (Eqs. 15, 42b, 43b), with the pressure gradient over the soil and
-// dummy neighbours of a soil particle, renormalised (renormalised_gradient.h). The drag between the
-// pore water and the skeleton is this K term (ERRATA.md); free water particles do not take part
-// (no mass exchange between free water and pore water). a_s is the skeleton's acceleration
-// low-passed over the last steps (seepage_inertia.h), zero for a rigid skeleton. A free-surface particle under the flux condition of
-// Eq. 39 takes the prescribed discharge (0, ..., −i) instead (pore_water_state.h).
+// K_i = K_sat K_rel(p_c,i) (Eqs. 15, 42b, 43b), with the renormalised pressure gradient of
+// renormalised_gradient.h, which that pass leaves in the seepage array itself. The drag between
+// the pore water and the skeleton is this K term (ERRATA.md); free water particles do not take
+// part (no mass exchange between free water and pore water). a_s is the skeleton's acceleration
+// low-passed over the last steps (seepage_inertia.h), zero for a rigid skeleton. A free-surface
+// particle under the flux condition of Eq. 39 takes the prescribed discharge (0, ..., −i) instead
+// (pore_water_state.h).
 #pragma once
 
 #include <cmath>
@@ -35,8 +36,9 @@ struct SeepageDischarge {
     const double p_c = -double(p.pressure[i]);
     const Real g = sph.gravity.norm();
     const Real conductivity = Real(m.saturated_conductivity * m.hydraulic.relative_conductivity(p_c));
-    soil.seepage[i] = conductivity / g *
-                      (-soil.pressure_gradient[i] / p.water_density[i] + sph.gravity - soil.skeleton_acceleration[i]);
+    const Vec<Real, Dim> pressure_gradient = soil.seepage[i];  // left there by the gradient pass
+    soil.seepage[i] =
+        conductivity / g * (-pressure_gradient / p.water_density[i] + sph.gravity - soil.skeleton_acceleration[i]);
   }
 };
 

@@ -26,12 +26,12 @@ struct SoilView {
   const std::uint8_t* material;        // per particle: index into materials
   Real* porosity;                      // φ (Eq. 26a)
   Real* saturation;                    // S_w(p_c) (Eqs. 14, 42, 43)
-  Vec<Real, Dim>* seepage;             // q_w (Eq. 27b); for a dummy, −q_g (Eq. 35b)
+  Vec<Real, Dim>* seepage;             // q_w (Eq. 27b); for a dummy, −q_g (Eq. 35b); between the
+                                       // gradient and seepage passes, ⟨∇p_w⟩^L (Eq. 25)
   // The dummies' soil side, indexed by b − GridView::moving_end (the dummy block's own index):
   Real* dummy_pore_pressure;           // p_w of the pore water (Eq. 32b)
   Voigt<Real>* dummy_stress;           // total stress σ (Eq. 32a)
   Vec<Real, Dim>* dummy_velocity;      // −v_g (Eqs. 34a, 35a)
-  Vec<Real, Dim>* pressure_gradient;   // per soil particle: renormalised ⟨∇p_w⟩^L (Eq. 25)
   std::uint8_t* free_surface;          // per soil particle: 1 where ∇·x is below the threshold (Eq. 38)
   std::uint8_t* surface_state;         // per soil particle: a SurfaceState
   Voigt<Real>* effective_stress;       // per soil particle: σ' (Eqs. 7, 8); its total stress
