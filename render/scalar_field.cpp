@@ -6,23 +6,6 @@
 
 namespace cascade::render {
 
-namespace {
-
-// The component a suffix selects in a field of `components` values, or -1.
-int component_index(const std::string& suffix, int components) {
-  static const char* const kVector[] = {"x", "y", "z"};
-  static const char* const kVoigt[] = {"xx", "yy", "zz", "xy", "yz", "zx"};
-  if (components == 3)
-    for (int c = 0; c < 3; ++c)
-      if (suffix == kVector[c]) return c;
-  if (components == 6)
-    for (int c = 0; c < 6; ++c)
-      if (suffix == kVoigt[c]) return c;
-  return -1;
-}
-
-}  // namespace
-
 ScalarField scalar_field(const FieldFrame& frame, const std::string& name) {
   const std::size_t n = frame.size();
   if (const FieldFrame::RealField* f = frame.find(name)) {
@@ -37,7 +20,7 @@ ScalarField scalar_field(const FieldFrame& frame, const std::string& name) {
   const auto underscore = name.rfind('_');
   if (underscore != std::string::npos) {
     if (const FieldFrame::RealField* f = frame.find(name.substr(0, underscore))) {
-      const int c = component_index(name.substr(underscore + 1), f->components);
+      const int c = field_component_index(f->components, name.substr(underscore + 1));
       if (c >= 0) {
         ScalarField component{name, f->units, std::vector<double>(n)};
         for (std::size_t i = 0; i < n; ++i) component.values[i] = f->values[i * std::size_t(f->components) + std::size_t(c)];

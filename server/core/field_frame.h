@@ -35,4 +35,18 @@ struct FieldFrame {
   }
 };
 
+// The component a name suffix selects in a field of `components` values: x, y, z of a vector,
+// xx, yy, zz, xy, yz, zx of a symmetric tensor (Voigt order, as the fields hold it); −1 for none.
+inline int field_component_index(int components, const std::string& suffix) {
+  static const char* const kVector[3] = {"x", "y", "z"};
+  static const char* const kTensor[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
+  if (components == 3)
+    for (int c = 0; c < 3; ++c)
+      if (suffix == kVector[c]) return c;
+  if (components == 6)
+    for (int c = 0; c < 6; ++c)
+      if (suffix == kTensor[c]) return c;
+  return -1;
+}
+
 }  // namespace cascade

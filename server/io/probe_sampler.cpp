@@ -28,19 +28,6 @@ void to_frame_coordinates(const v1::Probe& probe, int dimensions, double out[3])
   }
 }
 
-// Component suffixes of vector (x, y, z) and symmetric tensor (Voigt order of FieldFrame) fields.
-int component_index(int components, const std::string& suffix) {
-  static const char* const kVector[3] = {"x", "y", "z"};
-  static const char* const kTensor[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
-  if (components == 3)
-    for (int c = 0; c < 3; ++c)
-      if (suffix == kVector[c]) return c;
-  if (components == 6)
-    for (int c = 0; c < 6; ++c)
-      if (suffix == kTensor[c]) return c;
-  return -1;
-}
-
 }  // namespace
 
 ProbeSampler::ProbeSampler(const v1::ScenarioSpec& spec, double h, double particle_mass)
@@ -115,7 +102,7 @@ std::vector<double> ProbeSampler::scalar_field(const FieldFrame& frame, const st
   const std::size_t split = name.rfind('_');
   if (split != std::string::npos) {
     const auto* f = frame.find(name.substr(0, split));
-    const int c = f ? component_index(f->components, name.substr(split + 1)) : -1;
+    const int c = f ? field_component_index(f->components, name.substr(split + 1)) : -1;
     if (c >= 0) {
       std::vector<double> out(n);
       for (std::size_t i = 0; i < n; ++i) out[i] = f->values[f->components * i + c];
