@@ -26,6 +26,12 @@ void print_usage(std::FILE* out) {
       "  step SIM N | run-until SIM T\n"
       "  set SIM KEY=VALUE... [--at T]     rainfall.intensity, ponding.p_max, ponding.p_min (none: no limit)\n"
       "  watch SIM [--interval S]\n"
+      "  snapshot SIM [SNAPSHOT OPTIONS] --out FILE.png     one PNG, rendered on the server\n"
+      "  watch SIM --frames DIR [--every-sim S | --every-wall S] [--count N] [SNAPSHOT OPTIONS]\n"
+      "        the stream of PNGs as DIR/frame_NNNNNN.png (default every 1 s of wall time)\n"
+      "      SNAPSHOT OPTIONS (docs/rendering.md): --field F --phase water|soil|boundary|all --translucent P\n"
+      "        --colour-map viridis|cool_warm --min V --max V --camera side|orbit|look_at --azimuth D\n"
+      "        --elevation D --zoom Z --fov D --eye X,Y,Z --target X,Y,Z --width W --height H --background R,G,B\n"
       "  query SIM FIELD... [--phase water|soil|boundary] [--box X0,Y0,Z0,X1,Y1,Z1] [--stride N] --out F.h5|F.csv\n"
       "  probes SIM [--since T] | events SIM [--since T]\n"
       "  help  this text\n",

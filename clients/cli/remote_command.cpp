@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -41,8 +42,11 @@ struct Arguments {
   }
 };
 
-const std::set<std::string> kValueOptions = {"--server", "--token", "--tls-ca", "--set",    "--id",    "--at",
-                                             "--interval", "--phase", "--box",   "--stride", "--out", "--since"};
+const std::set<std::string> kValueOptions = {
+    "--server", "--token", "--tls-ca", "--set",    "--id",     "--at",   "--interval",  "--phase",     "--box",
+    "--stride", "--out",   "--since",  "--field",  "--translucent", "--colour-map", "--min", "--max", "--camera",
+    "--azimuth", "--elevation", "--zoom", "--fov", "--eye", "--target", "--width", "--height", "--background",
+    "--frames", "--every-sim", "--every-wall", "--count"};
 
 Arguments parse_arguments(const std::vector<std::string>& args) {
   Arguments a;
@@ -67,6 +71,15 @@ double number(const std::string& what, const std::string& text) {
   } catch (const std::exception&) {
   }
   throw UsageError(what + " needs a number, got '" + text + "'");
+}
+
+// "1,2,3" → {1, 2, 3}, exactly `count` of them.
+std::vector<double> numbers(const std::string& what, const std::string& text, std::size_t count, const char* form) {
+  std::vector<double> v;
+  std::stringstream parts(text);
+  for (std::string part; std::getline(parts, part, ',');) v.push_back(number(what, part));
+  if (v.size() != count) throw UsageError(what + " needs " + form);
+  return v;
 }
 
 std::string json_of(const google::protobuf::Message& message) {
@@ -225,7 +238,10 @@ int set_forcing(Remote& remote) {
   return 0;
 }
 
+int watch_frames(Remote& remote);
+
 int watch(Remote& remote) {
+  if (!remote.args().option("--frames").empty()) return watch_frames(remote);
   v1::WatchSimulationRequest request;
   request.set_name(remote.simulation());
   if (const std::string s = remote.args().option("--interval"); !s.empty()) request.set_interval_seconds(number("--interval", s));
@@ -299,10 +315,7 @@ int query(Remote& remote) {
   for (std::size_t k = 1; k < remote.args().positional.size(); ++k) request.add_fields(remote.args().positional[k]);
   request.set_phase(remote.args().option("--phase"));
   if (const std::string box = remote.args().option("--box"); !box.empty()) {
-    std::vector<double> v;
-    std::stringstream parts(box);
-    for (std::string part; std::getline(parts, part, ',');) v.push_back(number("--box", part));
-    if (v.size() != 6) throw UsageError("--box needs X0,Y0,Z0,X1,Y1,Z1");
+    const auto v = numbers("--box", box, 6, "X0,Y0,Z0,X1,Y1,Z1");
     for (int a = 0; a < 3; ++a) {
       request.mutable_box()->add_min(v[std::size_t(a)]);
       request.mutable_box()->add_max(v[std::size_t(a) + 3]);
@@ -387,6 +400,103 @@ int remove(Remote& remote) {
   return 0;
 }
 
+// What a snapshot shows, from the options; the server checks the values and names the field.
+v1::Snapshot snapshot_of(const Arguments& args) {
+  v1::Snapshot s;
+  s.set_field(args.option("--field"));
+  s.set_phase(args.option("--phase"));
+  for (const auto& phase : args.all("--translucent")) s.add_translucent(phase);
+  s.set_colour_map(args.option("--colour-map"));
+  if (const auto v = args.option("--min"); !v.empty()) s.set_min(number("--min", v));
+  if (const auto v = args.option("--max"); !v.empty()) s.set_max(number("--max", v));
+  s.set_camera(args.option("--camera"));
+  auto* orbit = s.mutable_orbit();
+  if (const auto v = args.option("--azimuth"); !v.empty()) orbit->set_azimuth(number("--azimuth", v));
+  if (const auto v = args.option("--elevation"); !v.empty()) orbit->set_elevation(number("--elevation", v));
+  if (const auto v = args.option("--zoom"); !v.empty()) orbit->set_zoom(number("--zoom", v));
+  const std::string eye = args.option("--eye"), target = args.option("--target"), fov = args.option("--fov");
+  if (!eye.empty() || !target.empty()) {
+    for (double c : numbers("--eye", eye, 3, "X,Y,Z")) s.mutable_look_at()->add_eye(c);
+    for (double c : numbers("--target", target, 3, "X,Y,Z")) s.mutable_look_at()->add_target(c);
+    if (!fov.empty()) s.mutable_look_at()->set_fov(number("--fov", fov));
+  } else if (!fov.empty()) {
+    orbit->set_fov(number("--fov", fov));
+  }
+  if (orbit->ByteSizeLong() == 0) s.clear_orbit();  // only the orbit camera may have one
+  if (const auto v = args.option("--width"); !v.empty()) s.set_width(int(number("--width", v)));
+  if (const auto v = args.option("--height"); !v.empty()) s.set_height(int(number("--height", v)));
+  if (const auto v = args.option("--background"); !v.empty())
+    for (double c : numbers("--background", v, 3, "R,G,B in [0, 1]")) s.add_background(c);
+  return s;
+}
+
+void write_file(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out.write(bytes.data(), std::streamsize(bytes.size()))) throw std::runtime_error("cannot write " + path);
+}
+
+void print_image(const v1::SnapshotImage& image, const std::string& path) {
+  std::printf("%s: t = %.9g s  step %llu  %s [%.6g, %.6g] %s  %ux%u  %llu particles\n", path.c_str(), image.time(),
+              static_cast<unsigned long long>(image.step()), image.field().c_str(), image.range_min(),
+              image.range_max(), image.units().c_str(), image.width(), image.height(),
+              static_cast<unsigned long long>(image.drawn_particles()));
+  std::fflush(stdout);
+}
+
+// The image's metadata as JSON, without the PNG bytes.
+std::string metadata_json(v1::SnapshotImage image, const std::string& path) {
+  image.clear_png();
+  std::string text = json_of(image);
+  return "{\"file\": \"" + path + "\", " + text.substr(1);
+}
+
+int snapshot(Remote& remote) {
+  v1::RenderSnapshotRequest request;
+  request.set_name(remote.simulation());
+  *request.mutable_snapshot() = snapshot_of(remote.args());
+  const std::string out = remote.args().option("--out");
+  if (out.empty()) throw UsageError("snapshot needs --out FILE.png");
+  grpc::ClientContext context;
+  remote.prepare(context);
+  v1::SnapshotImage image;
+  if (!remote.ok(remote.stub().RenderSnapshot(&context, request, &image))) return 1;
+  write_file(out, image.png());
+  if (remote.args().json) std::puts(metadata_json(image, out).c_str());
+  else print_image(image, out);
+  return 0;
+}
+
+// watch SIM --frames DIR: the stream's PNGs as DIR/frame_NNNNNN.png, numbered from 0.
+int watch_frames(Remote& remote) {
+  v1::StreamSnapshotsRequest request;
+  request.set_name(remote.simulation());
+  *request.mutable_snapshot() = snapshot_of(remote.args());
+  const std::string every_sim = remote.args().option("--every-sim"), every_wall = remote.args().option("--every-wall");
+  if (!every_sim.empty()) request.set_every_simulated_seconds(number("--every-sim", every_sim));
+  else request.set_every_wall_seconds(every_wall.empty() ? 1.0 : number("--every-wall", every_wall));
+  const double count = remote.args().option("--count").empty() ? 0 : number("--count", remote.args().option("--count"));
+  const std::filesystem::path dir = remote.args().option("--frames");
+  std::filesystem::create_directories(dir);
+  grpc::ClientContext context;
+  remote.prepare(context);
+  auto reader = remote.stub().StreamSnapshots(&context, request);
+  int written = 0;
+  for (v1::SnapshotImage image; reader->Read(&image);) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%06d.png", written++);
+    const std::string path = (dir / name).string();
+    write_file(path, image.png());
+    if (remote.args().json) std::puts(metadata_json(image, path).c_str());
+    else print_image(image, path);
+    if (count > 0 && written >= count) {
+      context.TryCancel();  // enough frames: the server sees the client go
+      reader->Finish();
+      return 0;
+    }
+  }
+  return remote.ok(reader->Finish()) ? 0 : 1;
+}
+
 template <typename Request>
 Request named(const Remote& remote) {
   Request request;
@@ -422,6 +532,7 @@ const std::map<std::string, Handler>& handlers() {
       {"set", set_forcing},
       {"watch", watch},
       {"query", query},
+      {"snapshot", snapshot},
       {"probes", probes},
       {"events", events},
       {"delete", remove},

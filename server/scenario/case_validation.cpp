@@ -61,6 +61,12 @@ class SpecChecker {
     check_initialisation();
   }
 
+  // One snapshot of the spec's kind (dimensions, materials), as the snapshot RPCs ask for it.
+  void run_snapshot(const std::string& key, const pb::Snapshot& snapshot) {
+    dims_ = spec_.dimensions();
+    check_snapshot(key, snapshot);
+  }
+
  private:
   [[noreturn]] void error(const std::string& key, const std::string& message) const {
     fail_(key, message);
@@ -582,6 +588,21 @@ class SpecChecker {
 
 void check_spec(const pb::ScenarioSpec& spec, const CaseFailure& fail) { SpecChecker(spec, fail).run(); }
 
+void check_snapshot(const pb::ScenarioSpec& spec, const std::string& key, const pb::Snapshot& snapshot,
+                    const CaseFailure& fail) {
+  SpecChecker(spec, fail).run_snapshot(key, snapshot);
+}
+
+void apply_snapshot_defaults(pb::Snapshot& snapshot, int dimensions) {
+  if (snapshot.field().empty()) snapshot.set_field("phase");
+  if (snapshot.name().empty()) snapshot.set_name(snapshot.field());
+  if (snapshot.camera().empty()) snapshot.set_camera(dimensions == 2 ? "side" : "orbit");
+  if (snapshot.colour_map().empty())
+    snapshot.set_colour_map(is_signed_snapshot_field(snapshot.field()) ? "cool_warm" : "viridis");
+  if (snapshot.width() == 0) snapshot.set_width(1280);
+  if (snapshot.height() == 0) snapshot.set_height(720);
+}
+
 void validate_spec(const pb::ScenarioSpec& spec) {
   check_spec(spec, [](const std::string& key, const std::string& message) { throw CaseError(key, message); });
 }
@@ -594,15 +615,7 @@ void apply_defaults(pb::ScenarioSpec& spec) {
   pb::Output& output = *spec.mutable_output();
   if (output.interval() == 0) output.set_interval(spec.end_time() / 100);
   if (!output.has_hdf5()) output.set_hdf5(true);
-  for (pb::Snapshot& snapshot : *output.mutable_snapshots()) {
-    if (snapshot.field().empty()) snapshot.set_field("phase");
-    if (snapshot.name().empty()) snapshot.set_name(snapshot.field());
-    if (snapshot.camera().empty()) snapshot.set_camera(spec.dimensions() == 2 ? "side" : "orbit");
-    if (snapshot.colour_map().empty())
-      snapshot.set_colour_map(is_signed_snapshot_field(snapshot.field()) ? "cool_warm" : "viridis");
-    if (snapshot.width() == 0) snapshot.set_width(1280);
-    if (snapshot.height() == 0) snapshot.set_height(720);
-  }
+  for (pb::Snapshot& snapshot : *output.mutable_snapshots()) apply_snapshot_defaults(snapshot, spec.dimensions());
   for (pb::Material& m : *spec.mutable_materials()) {
     if (m.model_case() == pb::Material::kWater) {
       pb::WaterModel& w = *m.mutable_water();

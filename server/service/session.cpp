@@ -62,7 +62,7 @@ struct Session::ScheduledForcing {
 };
 
 struct Session::Command {
-  enum class Kind { start, pause, resume, step, run_until, update_forcing, query };
+  enum class Kind { start, pause, resume, step, run_until, update_forcing, query, tap_frames };
   Kind kind;
   std::string caller;
   std::uint64_t steps = 0;
@@ -71,6 +71,7 @@ struct Session::Command {
   std::optional<double> effective_time;
   Done done;
   FrameDone frame_done;
+  std::weak_ptr<FrameTap> tap;
 };
 
 Session::Session(SessionConfig config)
@@ -120,6 +121,10 @@ void Session::update_forcing(const v1::Forcing& forcing, std::vector<std::string
 }
 void Session::query(FrameDone done) {
   enqueue({Command::Kind::query, {}, 0, 0, {}, {}, {}, std::move(done)});
+}
+
+void Session::tap_frames(std::weak_ptr<FrameTap> tap) {
+  enqueue({Command::Kind::tap_frames, {}, 0, 0, {}, {}, {}, {}, std::move(tap)});
 }
 
 void Session::stop(const std::string& reason, const std::string& caller) {
@@ -355,6 +360,11 @@ void Session::apply(Command& c) {
       }
       c.frame_done(grpc::Status::OK, std::make_shared<const FieldFrame>(engine_->frame()));
       return;
+    case Command::Kind::tap_frames:
+      if (!engine_) return;  // the simulation has failed: the tap's stream ends when it sees so
+      if (auto tap = c.tap.lock()) tap->take_frame(std::make_shared<const FieldFrame>(engine_->frame()));
+      frame_taps_.push_back(std::move(c.tap));
+      return;
   }
 }
 
@@ -425,8 +435,25 @@ void Session::advance() {
     lost_particles_ = engine_->lost_particles();
   }
   sample_outputs(false);
+  feed_taps();
   reach_targets();
   publish_status();
+}
+
+void Session::feed_taps() {
+  std::shared_ptr<const FieldFrame> frame;  // one copy for every tap that wants this step's
+  for (auto it = frame_taps_.begin(); it != frame_taps_.end();) {
+    const auto tap = it->lock();
+    if (!tap) {
+      it = frame_taps_.erase(it);
+      continue;
+    }
+    if (tap->wants_frame(engine_->time())) {
+      if (!frame) frame = std::make_shared<const FieldFrame>(engine_->frame());
+      tap->take_frame(frame);
+    }
+    ++it;
+  }
 }
 
 void Session::reach_targets() {

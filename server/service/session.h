@@ -26,6 +26,7 @@
 #include "server/core/engine.h"
 #include "server/io/journal.h"
 #include "server/io/probe_sampler.h"
+#include "server/service/frame_tap.h"
 
 namespace cascade::service {
 
@@ -73,6 +74,9 @@ class Session {
   void update_forcing(const v1::Forcing& forcing, std::vector<std::string> mask, std::optional<double> effective_time,
                       const std::string& caller, Done done);
   void query(FrameDone done);
+  // From the next step boundary on, offers `tap` every frame (the first at once); forgotten when
+  // the tap is destroyed.
+  void tap_frames(std::weak_ptr<FrameTap> tap);
 
   // Ends the solver thread at the next step boundary (a running simulation pauses there), writes
   // `reason` (shutdown, delete) to the journal and refuses what is still queued. Idempotent.
@@ -104,6 +108,7 @@ class Session {
   void stop_running(v1::Simulation::State state, const std::string& reason);
   void sample_outputs(bool force);
   void publish_status();
+  void feed_taps();
   void add_event(const std::string& kind, const std::string& message, const std::string& caller);
   void journal(v1::JournalEntry entry);
   bool transition(const Done& done, std::initializer_list<v1::Simulation::State> from, const char* command);
@@ -134,6 +139,7 @@ class Session {
   std::optional<std::uint64_t> stop_step_;
   std::optional<double> stop_time_;
   std::vector<Done> target_waiters_;
+  std::vector<std::weak_ptr<FrameTap>> frame_taps_;
   bool intensity_steered_ = false;  // the steered intensity replaces the case's rain series
   double next_probe_time_ = 0;
   double last_energy_wall_ = 0;

@@ -8,6 +8,7 @@
 #include "server/scenario/particle_builder.h"
 #include "server/service/field_query.h"
 #include "server/service/request_validation.h"
+#include "server/service/snapshot_request.h"
 
 namespace cascade::service {
 
@@ -74,6 +75,7 @@ void SimulationService::shutdown() {
   }
   for (auto& [id, session] : sessions) session->stop("shutdown", "server");
   watch_hub_.shutdown();
+  snapshot_hub_.shutdown();
 }
 
 grpc::Status SimulationService::lookup(const grpc::CallbackServerContext& context, const std::string& name,
@@ -350,6 +352,42 @@ grpc::ServerWriteReactor<v1::WatchSimulationResponse>* SimulationService::WatchS
   if (!status.ok()) return new FailedStream<v1::WatchSimulationResponse>(status);
   const double interval = request->interval_seconds() > 0 ? request->interval_seconds() : 1.0;
   return watch_hub_.watch(std::move(session), interval);
+}
+
+
+grpc::ServerUnaryReactor* SimulationService::RenderSnapshot(grpc::CallbackServerContext* context,
+                                                            const v1::RenderSnapshotRequest* request,
+                                                            v1::SnapshotImage* response) {
+  Caller caller;
+  std::shared_ptr<Session> session;
+  render::SnapshotSettings settings;
+  auto status = lookup(*context, request->name(), Role::viewer, caller, session);
+  if (status.ok()) status = snapshot_settings_for(session->spec(), request->snapshot(), settings);
+  if (!status.ok()) return finish(context, status);
+  auto* reactor = context->DefaultReactor();
+  // The solver thread copies the frame at its next step boundary; the render thread draws it.
+  session->query([this, reactor, response, settings](const grpc::Status& s, std::shared_ptr<const FieldFrame> frame) {
+    if (!s.ok()) return reactor->Finish(s);
+    snapshot_hub_.render(std::move(frame), settings, [reactor, response](const grpc::Status& r, v1::SnapshotImage image) {
+      if (r.ok()) *response = std::move(image);
+      reactor->Finish(r);
+    });
+  });
+  return reactor;
+}
+
+grpc::ServerWriteReactor<v1::SnapshotImage>* SimulationService::StreamSnapshots(
+    grpc::CallbackServerContext* context, const v1::StreamSnapshotsRequest* request) {
+  Caller caller;
+  std::shared_ptr<Session> session;
+  render::SnapshotSettings settings;
+  auto status = lookup(*context, request->name(), Role::viewer, caller, session);
+  if (status.ok()) status = snapshot_settings_for(session->spec(), request->snapshot(), settings);
+  if (status.ok()) status = check_snapshot_interval(*request);
+  if (!status.ok()) return new FailedStream<v1::SnapshotImage>(status);
+  const bool simulated = request->has_every_simulated_seconds();
+  const SnapshotInterval interval{simulated, simulated ? request->every_simulated_seconds() : request->every_wall_seconds()};
+  return snapshot_hub_.stream(std::move(session), std::move(settings), interval);
 }
 
 }  // namespace cascade::service

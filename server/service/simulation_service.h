@@ -16,6 +16,7 @@
 #include "cascade/v1/simulation.grpc.pb.h"
 #include "server/service/access_control.h"
 #include "server/service/session.h"
+#include "server/service/snapshot_hub.h"
 #include "server/service/watch_hub.h"
 
 namespace cascade::service {
@@ -77,6 +78,11 @@ class SimulationService final : public v1::SimulationService::CallbackService {
                                        v1::ListEventsResponse* response) override;
   grpc::ServerWriteReactor<v1::WatchSimulationResponse>* WatchSimulation(
       grpc::CallbackServerContext* context, const v1::WatchSimulationRequest* request) override;
+  grpc::ServerUnaryReactor* RenderSnapshot(grpc::CallbackServerContext* context,
+                                           const v1::RenderSnapshotRequest* request,
+                                           v1::SnapshotImage* response) override;
+  grpc::ServerWriteReactor<v1::SnapshotImage>* StreamSnapshots(grpc::CallbackServerContext* context,
+                                                               const v1::StreamSnapshotsRequest* request) override;
 
  private:
   // Authorises the caller and finds the simulation named `name`: INVALID_ARGUMENT for a malformed
@@ -97,6 +103,7 @@ class SimulationService final : public v1::SimulationService::CallbackService {
   std::map<std::string, std::shared_ptr<Session>> sessions_;  // by id
   bool shutting_down_ = false;
   WatchHub watch_hub_;
+  SnapshotHub snapshot_hub_;
 };
 
 }  // namespace cascade::service

@@ -8,6 +8,7 @@ and the scripts are unittest programs. Run one by hand the same way, e.g.
 """
 
 import argparse
+import os
 import pathlib
 import shutil
 import subprocess
@@ -86,9 +87,11 @@ def use_python_client():
 
 class Server:
     """A cascade-server process on a free loopback port (`with Server(...) as server:`); leaving the
-    block sends SIGTERM and checks that it exits 0. `server.address` is HOST:PORT."""
+    block sends SIGTERM and checks that it exits 0. `server.address` is HOST:PORT. `env`: variables
+    added to the server's environment."""
 
-    def __init__(self, name, *args):
+    def __init__(self, name, *args, env=None):
+        self.env = {**os.environ, **(env or {})}
         self.data_dir = WORK_DIR / name
         self.args = [str(CASCADE.parent / "cascade-server"), "--listen", "127.0.0.1:0", "--data-dir",
                      str(self.data_dir), "--threads", "1", *map(str, args)]
@@ -96,7 +99,7 @@ class Server:
         self.address = None
 
     def __enter__(self):
-        self.process = subprocess.Popen(self.args, stderr=subprocess.PIPE, text=True)
+        self.process = subprocess.Popen(self.args, stderr=subprocess.PIPE, text=True, env=self.env)
         line = self.process.stderr.readline()
         if "listening on " not in line:
             self.process.kill()
@@ -120,3 +123,40 @@ class Server:
         """`cascade SUBCOMMAND ... --server ADDRESS` (the subcommand first)."""
         extra = ["--token", token] if token else []
         return run(*args, "--server", self.address, *extra)
+
+
+def png_pixels(data):
+    """An 8-bit RGB PNG (as render/png_encoder.cpp writes it) → (width, height, rows of bytes)."""
+    import struct
+    import zlib
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+    pos, idat, width, height = 8, b"", 0, 0
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+            assert (depth, colour) == (8, 2), "not 8-bit RGB"
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    raw, stride, rows, previous = zlib.decompress(idat), 3 * width, [], bytearray(3 * width)
+    for y in range(height):
+        line = raw[y * (stride + 1):(y + 1) * (stride + 1)]
+        kind, row = line[0], bytearray(line[1:])
+        for x in range(stride):
+            a = row[x - 3] if x >= 3 else 0
+            b, c = previous[x], previous[x - 3] if x >= 3 else 0
+            if kind == 1:
+                row[x] = (row[x] + a) & 255
+            elif kind == 2:
+                row[x] = (row[x] + b) & 255
+            elif kind == 3:
+                row[x] = (row[x] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                row[x] = (row[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(row))
+        previous = row
+    return width, height, rows

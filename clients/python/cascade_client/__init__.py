@@ -9,6 +9,9 @@
     for status in sim.watch(interval=0.5):
         print(status.time, status.step)
     pore_pressure = sim.query("pore_pressure", phase="soil")   # numpy arrays
+    png = sim.snapshot(field="pore_pressure", phase="soil", width=640, height=360)   # PNG bytes
+    for frame in sim.snapshots(every_wall_seconds=1, field="velocity"):   # SnapshotImage
+        open(f"{frame.step}.png", "wb").write(frame.png)
 
 The generated stubs (cascade/v1/*_pb2.py) come from the build tree: put <build>/python on
 PYTHONPATH beside this package's folder. Errors raise grpc.RpcError, whose .code() and
@@ -22,6 +25,7 @@ import numpy as np
 from google.protobuf import field_mask_pb2
 
 from cascade.v1 import journal_pb2
+from cascade.v1 import scenario_pb2
 from cascade.v1 import simulation_pb2 as pb
 from cascade.v1 import simulation_pb2_grpc as pb_grpc
 
@@ -167,3 +171,24 @@ class Simulation:
                 yield update.status
             elif events:
                 yield update.event
+
+    def snapshot(self, metadata=False, **snapshot):
+        """PNG bytes of the particles at the next step boundary, rendered on the server.
+        Keywords are the fields of scenario.proto's Snapshot (docs/rendering.md): field, phase,
+        translucent, colour_map, min, max, camera, orbit={...}, look_at={...}, clip, slab, width,
+        height, background. With metadata=True the SnapshotImage (png, time, step, field, units,
+        range, camera, size)."""
+        image = self.client.call("RenderSnapshot", pb.RenderSnapshotRequest(
+            name=self.name, snapshot=scenario_pb2.Snapshot(**snapshot)))
+        return image if metadata else image.png
+
+    def snapshots(self, every_simulated_seconds=None, every_wall_seconds=None, **snapshot):
+        """SnapshotImages (.png, .time, .step, ...) every so many simulated or wall seconds, until
+        the simulation stops; a slow reader gets the latest frame. Close the iterator (or break out
+        of the loop and drop it) to end the stream."""
+        request = pb.StreamSnapshotsRequest(name=self.name, snapshot=scenario_pb2.Snapshot(**snapshot))
+        if every_simulated_seconds is not None:
+            request.every_simulated_seconds = every_simulated_seconds
+        if every_wall_seconds is not None:
+            request.every_wall_seconds = every_wall_seconds
+        return self.client.stream("StreamSnapshots", request)
