@@ -9,6 +9,7 @@
 
 #include "server/scenario/case_error.h"
 #include "server/scenario/case_loader.h"
+#include "server/scenario/number_text.h"
 #include "server/scenario/snapshot_fields.h"
 #include "server/scenario/soil_setup.h"
 
@@ -36,12 +37,6 @@ const std::set<std::string> kPhases = {"water", "soil", "boundary"};
 
 std::string indexed(const std::string& key, int i) { return key + "[" + std::to_string(i) + "]"; }
 
-std::string number(double v) {
-  std::ostringstream out;
-  out.precision(10);
-  out << v;
-  return out.str();
-}
 
 // Walks the spec top-down and reports the first problem; `dims_` is trusted once checked.
 class SpecChecker {
@@ -80,12 +75,12 @@ class SpecChecker {
   }
   void positive(const std::string& key, double v) const {
     finite(key, v);
-    if (v <= 0) error(key, "must be greater than 0 (is " + number(v) + ")");
+    if (v <= 0) error(key, "must be greater than 0 (is " + number_text(v) + ")");
   }
   void non_negative(const std::string& key, double v, const std::string& zero_means = {}) const {
     finite(key, v);
     if (v < 0)
-      error(key, "must not be negative (is " + number(v) + ")" + (zero_means.empty() ? "" : "; 0 means " + zero_means));
+      error(key, "must not be negative (is " + number_text(v) + ")" + (zero_means.empty() ? "" : "; 0 means " + zero_means));
   }
 
   void check_vector(const std::string& key, const RepeatedField<double>& v, int size, const std::string& what) const {
@@ -102,8 +97,8 @@ class SpecChecker {
     check_vector(key + ".max", max, dims_, what);
     for (int a = 0; a < dims_; ++a)
       if (!(max[a] > min[a]))
-        error(key + ".max", "must be greater than " + key + ".min on axis " + axis_name(a) + " (" + number(max[a]) +
-                                " <= " + number(min[a]) + "): " + what + " would be empty");
+        error(key + ".max", "must be greater than " + key + ".min on axis " + axis_name(a) + " (" + number_text(max[a]) +
+                                " <= " + number_text(min[a]) + "): " + what + " would be empty");
   }
 
   void check_scalars() {
@@ -112,7 +107,7 @@ class SpecChecker {
     positive("dp", spec_.dp());
     finite("h_over_dp", spec_.h_over_dp());
     if (spec_.h_over_dp() != 0 && (spec_.h_over_dp() < 1 || spec_.h_over_dp() > 3))
-      error("h_over_dp", "must be in [1, 3] (is " + number(spec_.h_over_dp()) + "); leave it out for 1.3");
+      error("h_over_dp", "must be in [1, 3] (is " + number_text(spec_.h_over_dp()) + "); leave it out for 1.3");
     positive("end_time", spec_.end_time());
   }
 
@@ -166,7 +161,7 @@ class SpecChecker {
     non_negative(key + ".max_pressure", w.max_pressure(), "rho g H");
     if (w.has_delta()) {
       non_negative(key + ".delta", w.delta());
-      if (w.delta() > 1) error(key + ".delta", "must be in [0, 1] (is " + number(w.delta()) + "; usually 0.1)");
+      if (w.delta() > 1) error(key + ".delta", "must be in [0, 1] (is " + number_text(w.delta()) + "; usually 0.1)");
     }
     if (w.has_viscosity_alpha()) non_negative(key + ".viscosity_alpha", w.viscosity_alpha());
   }
@@ -247,8 +242,8 @@ class SpecChecker {
     finite(key, pressure);
     const double bulk = smallest_bulk_modulus();
     if (!(pressure > -bulk))
-      error(key, "must be above -K_w = " + number(-bulk) + " Pa, the smallest pore-water bulk modulus of the soils (is " +
-                     number(pressure) + "): the pore-water density ρ_w0 (1 + p / K_w) must stay positive");
+      error(key, "must be above -K_w = " + number_text(-bulk) + " Pa, the smallest pore-water bulk modulus of the soils (is " +
+                     number_text(pressure) + "): the pore-water density ρ_w0 (1 + p / K_w) must stay positive");
   }
 
   static std::string soil_state_key(const pb::InitialState& initial) {
@@ -272,11 +267,11 @@ class SpecChecker {
     if (initial.has_suction()) {
       finite(key + ".suction", initial.suction());
       if (!(initial.suction() > 0))
-        error(key + ".suction", "must be greater than 0 (is " + number(initial.suction()) +
+        error(key + ".suction", "must be greater than 0 (is " + number_text(initial.suction()) +
                                     "); leave it out for zero pore pressure, or give water_table");
       const double bulk = m.soil().water_bulk_modulus() > 0 ? m.soil().water_bulk_modulus() : kDefaultWaterBulkModulus;
       if (!(initial.suction() < bulk))
-        error(key + ".suction", "must be below the pore water's bulk modulus K_w = " + number(bulk) +
+        error(key + ".suction", "must be below the pore water's bulk modulus K_w = " + number_text(bulk) +
                                     " Pa: the pore-water density ρ_w0 (1 − suction / K_w) must stay positive");
     }
     if (initial.has_water_table()) finite(key + ".water_table", initial.water_table());
@@ -313,7 +308,7 @@ class SpecChecker {
         finite(key + ".extruded_polygon.y_max", e.y_max());
         if (!(e.y_max() > e.y_min()))
           error(key + ".extruded_polygon.y_max",
-                "must be greater than y_min (" + number(e.y_max()) + " <= " + number(e.y_min()) + ")");
+                "must be greater than y_min (" + number_text(e.y_max()) + " <= " + number_text(e.y_min()) + ")");
         if (inside_domain) {
           check_inside(key + ".extruded_polygon.y_min", e.y_min(), 1);
           check_inside(key + ".extruded_polygon.y_max", e.y_max(), 1);
@@ -353,20 +348,20 @@ class SpecChecker {
   void check_inside(const std::string& key, double v, int axis) const {
     const double lo = spec_.domain().min(axis), hi = spec_.domain().max(axis);
     if (v < lo || v > hi)
-      error(key, "lies outside the domain on axis " + axis_name(axis) + " (" + number(v) + " not in [" + number(lo) +
-                     ", " + number(hi) + "])");
+      error(key, "lies outside the domain on axis " + axis_name(axis) + " (" + number_text(v) + " not in [" + number_text(lo) +
+                     ", " + number_text(hi) + "])");
   }
 
   void check_numerics() const {
     const pb::Numerics& n = spec_.numerics();
     finite("numerics.cfl", n.cfl());
     if (n.cfl() < 0 || n.cfl() > 1)
-      error("numerics.cfl", "must be in (0, 1] (is " + number(n.cfl()) + "; 0 means 0.2)");
+      error("numerics.cfl", "must be in (0, 1] (is " + number_text(n.cfl()) + "; 0 means 0.2)");
     non_negative("numerics.max_dt", n.max_dt(), "no upper bound");
     non_negative("numerics.min_dt", n.min_dt(), "1e-12");
     if (n.max_dt() > 0 && n.min_dt() > n.max_dt())
       error("numerics.min_dt",
-            "must not exceed numerics.max_dt (" + number(n.min_dt()) + " > " + number(n.max_dt()) + ")");
+            "must not exceed numerics.max_dt (" + number_text(n.min_dt()) + " > " + number_text(n.max_dt()) + ")");
   }
 
   void check_output() const {
@@ -405,7 +400,7 @@ class SpecChecker {
     if (s.has_min()) finite(key + ".min", s.min());
     if (s.has_max()) finite(key + ".max", s.max());
     if (s.has_min() && s.has_max() && !(s.max() > s.min()))
-      error(key + ".max", "must be greater than min (" + number(s.max()) + " <= " + number(s.min()) + ")");
+      error(key + ".max", "must be greater than min (" + number_text(s.max()) + " <= " + number_text(s.min()) + ")");
     check_snapshot_camera(key, s);
     if (s.has_clip()) check_min_max(key + ".clip", s.clip().min(), s.clip().max(), "the clip box");
     if (s.has_slab()) {
@@ -423,7 +418,7 @@ class SpecChecker {
       check_vector(key + ".background", s.background(), 3, "a colour (red, green, blue in [0, 1])");
       for (int c = 0; c < 3; ++c)
         if (s.background(c) < 0 || s.background(c) > 1)
-          error(indexed(key + ".background", c), "must be in [0, 1] (is " + number(s.background(c)) + ")");
+          error(indexed(key + ".background", c), "must be in [0, 1] (is " + number_text(s.background(c)) + ")");
     }
   }
 
@@ -439,13 +434,13 @@ class SpecChecker {
       error(key + (s.has_look_at() ? ".look_at" : ".camera"),
             s.has_look_at() ? "is used by the look_at camera only" : "look_at needs look_at: {eye: ..., target: ...}");
     auto fov = [&](const std::string& k, bool has, double v) {
-      if (has && !(v > 0 && v < 180)) error(k, "must be in (0, 180) degrees (is " + number(v) + ")");
+      if (has && !(v > 0 && v < 180)) error(k, "must be in (0, 180) degrees (is " + number_text(v) + ")");
     };
     if (s.has_orbit()) {
       const pb::SnapshotOrbit& o = s.orbit();
       if (o.has_azimuth()) finite(key + ".orbit.azimuth", o.azimuth());
       if (o.has_elevation() && !(std::fabs(o.elevation()) <= 90))
-        error(key + ".orbit.elevation", "must be in [-90, 90] degrees (is " + number(o.elevation()) + ")");
+        error(key + ".orbit.elevation", "must be in [-90, 90] degrees (is " + number_text(o.elevation()) + ")");
       if (o.has_zoom()) positive(key + ".orbit.zoom", o.zoom());
       fov(key + ".orbit.fov", o.has_fov(), o.fov());
     }
@@ -532,7 +527,7 @@ class SpecChecker {
     const pb::Initialisation& init = spec_.initialisation();
     finite("initialisation.duration", init.duration());
     if (!(init.duration() > 0))
-      error("initialisation.duration", "must be greater than 0 (is " + number(init.duration()) +
+      error("initialisation.duration", "must be greater than 0 (is " + number_text(init.duration()) +
                                            "): the simulated seconds the stage runs before t = 0");
     if (!init.has_hydraulics()) return;
     if (init.hydraulics().rainfall_size() > 0)
@@ -553,21 +548,21 @@ class SpecChecker {
       const pb::RainfallPoint& point = h.rainfall(i);
       finite(point_key + ".time", point.time());
       finite(point_key + ".intensity", point.intensity());
-      if (point.time() < 0) error(point_key + ".time", "must not be negative (is " + number(point.time()) + ")");
+      if (point.time() < 0) error(point_key + ".time", "must not be negative (is " + number_text(point.time()) + ")");
       if (i > 0 && !(point.time() > h.rainfall(i - 1).time()))
-        error(point_key + ".time", "must be later than the time of the point before (" + number(point.time()) +
-                                       " <= " + number(h.rainfall(i - 1).time()) + ")");
+        error(point_key + ".time", "must be later than the time of the point before (" + number_text(point.time()) +
+                                       " <= " + number_text(h.rainfall(i - 1).time()) + ")");
     }
     finite(key + ".ponding_pressure", h.ponding_pressure());
     const double bulk = smallest_bulk_modulus();
     if (!(h.ponding_pressure() > -bulk))
-      error(key + ".ponding_pressure", "must be above -K_w = " + number(-bulk) + " Pa (is " +
-                                           number(h.ponding_pressure()) + ")");
+      error(key + ".ponding_pressure", "must be above -K_w = " + number_text(-bulk) + " Pa (is " +
+                                           number_text(h.ponding_pressure()) + ")");
     if (h.has_drying_pressure()) {
       finite(key + ".drying_pressure", h.drying_pressure());
       if (!(h.drying_pressure() < h.ponding_pressure()))
-        error(key + ".drying_pressure", "must be below ponding_pressure (" + number(h.drying_pressure()) +
-                                            " >= " + number(h.ponding_pressure()) + ")");
+        error(key + ".drying_pressure", "must be below ponding_pressure (" + number_text(h.drying_pressure()) +
+                                            " >= " + number_text(h.ponding_pressure()) + ")");
       above_minus_bulk_modulus(key + ".drying_pressure", h.drying_pressure());
     }
     if (h.has_surface_pressure()) {

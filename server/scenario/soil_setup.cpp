@@ -1,10 +1,10 @@
 #include "server/scenario/soil_setup.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "server/physics/swcc/hydraulic_model_check.h"
 #include "server/scenario/case_error.h"
+#include "server/scenario/number_text.h"
 
 namespace cascade {
 
@@ -15,12 +15,6 @@ namespace pb = cascade::v1;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRadiansPerDegree = kPi / 180.0;
 
-std::string number(double v) {
-  std::ostringstream out;
-  out.precision(10);
-  out << v;
-  return out.str();
-}
 
 // The first word of a model check's message: the parameter it names.
 std::string first_word(const std::string& message) { return message.substr(0, message.find(' ')); }
@@ -39,11 +33,11 @@ class Reporter {
   }
   void positive(const std::string& key, double v) const {
     finite(key, v);
-    if (!(v > 0)) error(key, "must be greater than 0 (is " + number(v) + ")");
+    if (!(v > 0)) error(key, "must be greater than 0 (is " + number_text(v) + ")");
   }
   void non_negative(const std::string& key, double v, const std::string& zero_means) const {
     finite(key, v);
-    if (v < 0) error(key, "must not be negative (is " + number(v) + "); 0 means " + zero_means);
+    if (v < 0) error(key, "must not be negative (is " + number_text(v) + "); 0 means " + zero_means);
   }
 
  private:
@@ -124,7 +118,7 @@ SoilModel<double> mechanical_model(const pb::SoilModel& s, const std::string& ke
       // In degrees first, so the message shows the number the file has.
       report.finite(sub + ".friction_angle", d.friction_angle());
       if (!(d.friction_angle() >= 0 && d.friction_angle() < 90))
-        report.error(sub + ".friction_angle", "must be in [0, 90) degrees (is " + number(d.friction_angle()) + ")");
+        report.error(sub + ".friction_angle", "must be in [0, 90) degrees (is " + number_text(d.friction_angle()) + ")");
       model.kind = SoilModel<double>::Kind::drucker_prager;
       model.youngs_modulus = d.youngs_modulus();
       model.poisson_ratio = d.poisson_ratio();
@@ -181,22 +175,22 @@ SoilMaterial soil_material(const pb::ScenarioSpec& spec, int material_index, con
   report.positive(key + ".grain_density", s.grain_density());
   report.finite(key + ".porosity", s.porosity());
   if (!(s.porosity() > 0 && s.porosity() < 1))
-    report.error(key + ".porosity", "must be in (0, 1) (is " + number(s.porosity()) + ")");
+    report.error(key + ".porosity", "must be in (0, 1) (is " + number_text(s.porosity()) + ")");
   report.positive(key + ".saturated_conductivity", s.saturated_conductivity());
   report.non_negative(key + ".water_bulk_modulus", s.water_bulk_modulus(), "2e6 Pa");
   report.non_negative(key + ".pore_sound_speed", s.pore_sound_speed(), "10 saturated_conductivity");
   if (s.has_delta()) {
     report.finite(key + ".delta", s.delta());
     if (!(s.delta() >= 0 && s.delta() <= 1))
-      report.error(key + ".delta", "must be in [0, 1] (is " + number(s.delta()) + "; usually 0.1)");
+      report.error(key + ".delta", "must be in [0, 1] (is " + number_text(s.delta()) + "; usually 0.1)");
   }
   if (s.has_viscosity_alpha()) {
     report.finite(key + ".viscosity_alpha", s.viscosity_alpha());
     if (s.viscosity_alpha() < 0)
-      report.error(key + ".viscosity_alpha", "must not be negative (is " + number(s.viscosity_alpha()) + ")");
+      report.error(key + ".viscosity_alpha", "must not be negative (is " + number_text(s.viscosity_alpha()) + ")");
   }
   report.finite(key + ".damping", s.damping());
-  if (s.damping() < 0) report.error(key + ".damping", "must not be negative (is " + number(s.damping()) + "); 0 means none");
+  if (s.damping() < 0) report.error(key + ".damping", "must not be negative (is " + number_text(s.damping()) + "); 0 means none");
   if (s.damping() > 0 && s.rigid())
     report.error(key + ".damping", "damps the skeleton's motion, and a rigid soil does not move: leave it out");
   if (s.viscosity_switch() && s.rigid())

@@ -1,10 +1,10 @@
 #include "server/service/snapshot_request.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "server/io/snapshot_writer.h"
 #include "server/scenario/case_validation.h"
+#include "server/scenario/number_text.h"
 #include "server/service/request_validation.h"
 
 namespace cascade::service {
@@ -16,12 +16,6 @@ struct SnapshotProblem {
   std::string key, message;
 };
 
-std::string number(double v) {
-  std::ostringstream out;
-  out.precision(10);
-  out << v;
-  return out.str();
-}
 
 }  // namespace
 
@@ -43,13 +37,13 @@ grpc::Status check_snapshot_interval(const v1::StreamSnapshotsRequest& request) 
   switch (request.interval_case()) {
     case v1::StreamSnapshotsRequest::kEverySimulatedSeconds: {
       const double s = request.every_simulated_seconds();
-      if (!(std::isfinite(s) && s > 0)) return invalid("every_simulated_seconds", "must be a finite number > 0, got " + number(s));
+      if (!(std::isfinite(s) && s > 0)) return invalid("every_simulated_seconds", "must be a finite number > 0, got " + number_text(s));
       return grpc::Status::OK;
     }
     case v1::StreamSnapshotsRequest::kEveryWallSeconds: {
       const double s = request.every_wall_seconds();
       if (!(s >= kMinSnapshotWallInterval && s <= kMaxSnapshotWallInterval))
-        return invalid("every_wall_seconds", "must be in [0.05, 3600], got " + number(s));
+        return invalid("every_wall_seconds", "must be in [0.05, 3600], got " + number_text(s));
       return grpc::Status::OK;
     }
     default:
