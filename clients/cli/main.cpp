@@ -34,6 +34,7 @@ void print_usage(std::FILE* out) {
       "        --elevation D --zoom Z --fov D --eye X,Y,Z --target X,Y,Z --width W --height H --background R,G,B\n"
       "  query SIM FIELD... [--phase water|soil|boundary] [--box X0,Y0,Z0,X1,Y1,Z1] [--stride N] --out F.h5|F.csv\n"
       "  probes SIM [--since T] | events SIM [--since T]\n"
+      "  checkpoint SIM | checkpoints SIM | restore SIM CHECKPOINT   (ckpt-NNNN or its full name)\n"
       "  help  this text\n",
       out);
 }

@@ -497,6 +497,36 @@ int watch_frames(Remote& remote) {
   return remote.ok(reader->Finish()) ? 0 : 1;
 }
 
+void print_checkpoint(const v1::Checkpoint& c) {
+  std::printf("%s  t = %.9g s, step %llu  %s\n", c.name().c_str(), c.time(), static_cast<unsigned long long>(c.step()),
+              c.path().c_str());
+}
+
+int checkpoint(Remote& remote) {
+  v1::CreateCheckpointRequest request;
+  request.set_parent(remote.simulation());
+  grpc::ClientContext context;
+  remote.prepare(context);
+  v1::Checkpoint reply;
+  if (!remote.ok(remote.stub().CreateCheckpoint(&context, request, &reply))) return 1;
+  if (remote.args().json) std::puts(json_of(reply).c_str());
+  else print_checkpoint(reply);
+  return 0;
+}
+
+int checkpoints(Remote& remote) {
+  v1::ListCheckpointsRequest request;
+  request.set_parent(remote.simulation());
+  grpc::ClientContext context;
+  remote.prepare(context);
+  v1::ListCheckpointsResponse reply;
+  if (!remote.ok(remote.stub().ListCheckpoints(&context, request, &reply))) return 1;
+  if (remote.args().json) std::puts(json_of(reply).c_str());
+  else
+    for (const auto& c : reply.checkpoints()) print_checkpoint(c);
+  return 0;
+}
+
 template <typename Request>
 Request named(const Remote& remote) {
   Request request;
@@ -536,6 +566,17 @@ const std::map<std::string, Handler>& handlers() {
       {"probes", probes},
       {"events", events},
       {"delete", remove},
+      {"checkpoint", checkpoint},
+      {"checkpoints", checkpoints},
+      {"restore",
+       [](Remote& r) {
+         // The checkpoint by its id (ckpt-0001) or its full name.
+         const std::string& checkpoint = r.positional(1, "a checkpoint (ckpt-NNNN or its full name)");
+         v1::RestoreCheckpointRequest request;
+         request.set_name(checkpoint.find('/') == std::string::npos ? r.simulation() + "/checkpoints/" + checkpoint
+                                                                    : checkpoint);
+         return simulation_call(r, request, &Stub::RestoreCheckpoint);
+       }},
   };
   return table;
 }

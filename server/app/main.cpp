@@ -1,6 +1,7 @@
 // cascade-server: the steering server (server/app/server_options.h for its command line).
-// SIGTERM or SIGINT: every simulation pauses at its next step boundary and its journal is closed
-// with a `shutdown` entry, open streams end, and the process exits 0.
+// SIGTERM or SIGINT: every simulation pauses at its next step boundary, a running or paused one
+// writes a checkpoint there, its journal is closed with a `shutdown` entry, open streams end, and
+// the process exits 0.
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/grpcpp.h>
 #include <grpcpp/health_check_service_interface.h>

@@ -11,6 +11,7 @@
 
 #include <vector>
 
+#include "server/core/engine_state.h"
 #include "server/core/field_frame.h"
 #include "server/core/host_particles.h"
 #include "server/core/hydraulic_forcing.h"
@@ -81,6 +82,11 @@ class Engine {
   // back to 0 and the displacement field is measured from the positions reached. The state, the
   // step count and the forcing are kept.
   virtual void restart_clock() = 0;
+  // What the next steps depend on, taken between steps; restore() of it into an engine of the same
+  // case, precision and dimension gives the same bits from there on (engine_state.h). restore()
+  // throws std::invalid_argument when the state belongs to another kind of engine or particle set.
+  virtual EngineState state() const = 0;
+  virtual void restore(const EngineState& state) = 0;
 };
 
 std::unique_ptr<Engine> make_engine(const EngineConfig& config, const HostParticles& particles);

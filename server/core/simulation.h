@@ -13,6 +13,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "server/core/backend.h"
@@ -125,6 +126,39 @@ class Simulation final : public Engine {
     initial_position_ = now.position;
   }
 
+  EngineState state() const override {
+    EngineState s;
+    s.dimensions = Dim;
+    s.single_precision = std::is_same_v<Real, float>;
+    s.particles = phase_.size();
+    s.time = time_, s.last_dt = dt_, s.steps = steps_;
+    s.forcing = forcing_;
+    s.displacement_reference = initial_position_;
+    for_each_carried_array(*this, [&s](const char* name, const auto& array) { export_array(array, name, s); });
+    return s;
+  }
+
+  void restore(const EngineState& s) override {
+    if (s.dimensions != Dim || s.single_precision != std::is_same_v<Real, float> || s.particles != phase_.size())
+      throw std::invalid_argument("the state is of a " + std::to_string(s.dimensions) + "D engine in " +
+                                  (s.single_precision ? "float" : "double") + " with " + std::to_string(s.particles) +
+                                  " particles; this one is " + std::to_string(Dim) + "D, " +
+                                  (std::is_same_v<Real, float> ? "float" : "double") + ", " +
+                                  std::to_string(phase_.size()) + " particles");
+    for_each_carried_array(*this, [&s](const char* name, auto& array) { import_array(s, name, array); });
+    time_ = s.time, dt_ = s.last_dt, steps_ = s.steps;
+    forcing_ = s.forcing;
+    if (has_soil_) initial_position_ = s.displacement_reference;
+    // The neighbour lists of the coming steps are those built at the listed positions, in the
+    // order the arrays are in (sorted by those positions' cells): sorting again there keeps that
+    // order (the sort is stable) and lists the same neighbours; the particles then go back to
+    // where they are now.
+    const Vector<V> now = position_;
+    position_ = listed_position_;
+    sort_by_cell();
+    position_ = now;
+  }
+
   std::size_t device_bytes() const override {
     std::size_t bytes = 0;
     auto add = [&](const auto& v) { bytes += v.capacity() * sizeof(typename std::decay_t<decltype(v)>::value_type); };
@@ -186,6 +220,78 @@ class Simulation final : public Engine {
   }
 
  private:
+  // The arrays that hold state from one step to the next (sort_by_cell's reordered ones, and the
+  // listed positions that decide the next list rebuild), with the pressures and surface values
+  // the frames report; every other array is recomputed in a step before it is read.
+  template <typename Self, typename F>
+  static void for_each_carried_array(Self& self, F&& f) {
+    f("position", self.position_), f("velocity", self.velocity_), f("ghost", self.ghost_);
+    f("listed_position", self.listed_position_), f("density", self.density_);
+    f("water_density", self.water_density_), f("pressure", self.pressure_), f("phase", self.phase_);
+    f("id", self.id_);
+    if (!self.has_soil_) return;
+    f("soil_material", self.soil_material_), f("surface_state", self.surface_state_), f("wall", self.wall_);
+    f("free_surface", self.free_surface_), f("porosity", self.porosity_), f("saturation", self.saturation_);
+    f("plastic_strain", self.plastic_strain_), f("seepage", self.seepage_);
+    f("skeleton_acceleration", self.skeleton_acceleration_), f("effective_stress", self.effective_stress_);
+  }
+
+  // Scalars of Real or an integer type, or Eigen fixed-size vectors and tensors of Real.
+  template <typename T>
+  static constexpr int components_of() {
+    if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) return 1;
+    else return int(T::SizeAtCompileTime);
+  }
+  template <typename T>
+  static constexpr bool is_integer() {
+    return std::is_integral_v<T> || std::is_enum_v<T>;
+  }
+
+  template <typename T>
+  static void export_array(const Vector<T>& array, const char* name, EngineState& s) {
+    std::vector<T> host(array.size());
+    thrust::copy(array.begin(), array.end(), host.begin());
+    constexpr int c = components_of<T>();
+    if constexpr (is_integer<T>()) {
+      auto& out = s.integers[name];
+      for (const T& v : host) out.push_back(std::uint32_t(v));
+    } else {
+      auto& out = s.reals[name];
+      out.reserve(host.size() * c);
+      for (const T& v : host)
+        for (int k = 0; k < c; ++k) {
+          if constexpr (c == 1) out.push_back(double(v));
+          else out.push_back(double(v(k)));
+        }
+    }
+  }
+
+  template <typename Arrays>
+  static const typename Arrays::mapped_type& stored(const Arrays& arrays, const char* name, std::size_t size) {
+    const auto found = arrays.find(name);
+    if (found == arrays.end() || found->second.size() != size)
+      throw std::invalid_argument(std::string("the state's array '") + name + "' is missing or has the wrong size");
+    return found->second;
+  }
+
+  template <typename T>
+  static void import_array(const EngineState& s, const char* name, Vector<T>& array) {
+    constexpr int c = components_of<T>();
+    std::vector<T> host(s.particles);
+    if constexpr (is_integer<T>()) {
+      const auto& values = stored(s.integers, name, s.particles);
+      for (std::size_t i = 0; i < s.particles; ++i) host[i] = T(values[i]);
+    } else {
+      const auto& values = stored(s.reals, name, s.particles * c);
+      for (std::size_t i = 0; i < s.particles; ++i) {
+        if constexpr (c == 1) host[i] = T(values[i]);
+        else
+          for (int k = 0; k < c; ++k) host[i](k) = typename T::Scalar(values[i * c + k]);
+      }
+    }
+    array = host;
+  }
+
   // The soil fields of docs/output.md, ordered by id like the others.
   void add_soil_fields(FieldFrame& f, const std::vector<std::uint32_t>& id, const std::vector<Real>& pressure,
                        const int* axis3) const {

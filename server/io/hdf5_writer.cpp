@@ -2,6 +2,8 @@
 
 #include <hdf5.h>
 
+#include "server/io/hdf5_support.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
@@ -12,49 +14,11 @@
 namespace cascade {
 namespace {
 
+using namespace hdf5;
+
 static_assert(std::is_same_v<hid_t, std::int64_t>, "file_ stores an hid_t");
 
 constexpr char kFormat[] = "cascade-fields-1";
-
-// Owns one HDF5 identifier; the constructor throws when the call that made it failed.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
-    if (id_ < 0) throw std::runtime_error("HDF5: cannot " + what);
-  }
-  ~Handle() { close_(id_); }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  operator hid_t() const { return id_; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
-
-void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error("HDF5: cannot " + what);
-}
-
-void write_string_attribute(hid_t object, const char* name, const std::string& value) {
-  // Variable-length UTF-8: h5py returns it as str, C readers as char*.
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy string type");
-  check(H5Tset_size(type, H5T_VARIABLE), "size string type");
-  check(H5Tset_cset(type, H5T_CSET_UTF8), "set string encoding");
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create scalar space");
-  Handle attribute(H5Acreate2(object, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-                   std::string("create attribute ") + name);
-  const char* text = value.c_str();
-  check(H5Awrite(attribute, type, &text), std::string("write attribute ") + name);
-}
-
-void write_scalar_attribute(hid_t object, const char* name, hid_t file_type, hid_t memory_type,
-                            const void* value) {
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create scalar space");
-  Handle attribute(H5Acreate2(object, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-                   std::string("create attribute ") + name);
-  check(H5Awrite(attribute, memory_type, value), std::string("write attribute ") + name);
-}
 
 // Writes rows x components values as a dataset of shape (rows) or (rows, components), chunked
 // and compressed when there are more than kCompressAbove rows.

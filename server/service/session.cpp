@@ -62,7 +62,7 @@ struct Session::ScheduledForcing {
 };
 
 struct Session::Command {
-  enum class Kind { start, pause, resume, step, run_until, update_forcing, query, tap_frames };
+  enum class Kind { start, pause, resume, step, run_until, update_forcing, query, tap_frames, checkpoint };
   Kind kind;
   std::string caller;
   std::uint64_t steps = 0;
@@ -72,12 +72,22 @@ struct Session::Command {
   Done done;
   FrameDone frame_done;
   std::weak_ptr<FrameTap> tap;
+  CheckpointDone checkpoint_done;
 };
 
 Session::Session(SessionConfig config)
     : config_(std::move(config)), probe_names_(names_of_probes(config_.spec)) {
   status_.set_state(v1::Simulation::CREATED);
   forcing_ = forcing_message(config_.engine.forcing, config_.engine.dimensions);
+  if (config_.restore) {  // published at once: the reply to RestoreCheckpoint shows where it is
+    const EngineState& restored = config_.restore->checkpoint.engine;
+    state_ = v1::Simulation::PAUSED;
+    status_.set_state(state_);
+    status_.set_time(restored.time);
+    status_.set_step(restored.steps);
+    status_.set_dt(restored.last_dt);
+    forcing_ = forcing_message(restored.forcing, config_.engine.dimensions);
+  }
   thread_ = std::thread([this] { run_loop(); });
 }
 
@@ -97,6 +107,7 @@ void Session::enqueue(Command command) {
   const grpc::Status gone(grpc::StatusCode::FAILED_PRECONDITION, "simulation " + config_.name + " is stopping");
   if (command.done) command.done({gone, 0, 0});
   if (command.frame_done) command.frame_done(gone, nullptr);
+  if (command.checkpoint_done) command.checkpoint_done(gone, {});
 }
 
 void Session::start(const std::string& caller, Done done) {
@@ -127,13 +138,20 @@ void Session::tap_frames(std::weak_ptr<FrameTap> tap) {
   enqueue({Command::Kind::tap_frames, {}, 0, 0, {}, {}, {}, {}, std::move(tap)});
 }
 
-void Session::stop(const std::string& reason, const std::string& caller) {
+void Session::checkpoint(const std::string& caller, CheckpointDone done) {
+  Command command{Command::Kind::checkpoint, caller, 0, 0, {}, {}, {}, {}};
+  command.checkpoint_done = std::move(done);
+  enqueue(std::move(command));
+}
+
+void Session::stop(const std::string& reason, const std::string& caller, bool checkpoint_first) {
   {
     std::lock_guard lock(mutex_);
     if (!stop_requested_) {
       stop_requested_ = true;
       stop_reason_ = reason;
       stop_caller_ = caller;
+      checkpoint_on_stop_ = checkpoint_first;
     }
     wake_.notify_one();
   }
@@ -205,6 +223,7 @@ void Session::run_loop() {
         const grpc::Status failed(grpc::StatusCode::INTERNAL, e.what());
         if (command.done) command.done(here(failed));
         if (command.frame_done) command.frame_done(failed, nullptr);
+        if (command.checkpoint_done) command.checkpoint_done(failed, {});
       }
     }
     std::unique_lock lock(mutex_);
@@ -221,10 +240,19 @@ void Session::run_loop() {
   // Stopping: a running simulation pauses at this boundary; everything still waiting is refused.
   const grpc::Status refused(grpc::StatusCode::ABORTED, "simulation " + config_.name + " stopped (" + stop_reason_ + ")");
   std::deque<Command> left;
+  bool worth_keeping = false;
   {
     std::lock_guard lock(mutex_);
+    worth_keeping = engine_ && (state_ == v1::Simulation::RUNNING || state_ == v1::Simulation::PAUSED);
     if (state_ == v1::Simulation::RUNNING) state_ = v1::Simulation::PAUSED;
     left.swap(queue_);
+  }
+  if (checkpoint_on_stop_ && worth_keeping) {
+    try {
+      take_checkpoint(stop_caller_);
+    } catch (const std::exception& e) {  // the process goes on stopping; the journal says how far it got
+      std::fprintf(stderr, "cascade-server: %s: no checkpoint: %s\n", config_.name.c_str(), e.what());
+    }
   }
   v1::JournalEntry entry;
   entry.set_command(stop_reason_);
@@ -234,6 +262,7 @@ void Session::run_loop() {
   for (auto& command : left) {
     if (command.done) command.done(here(refused));
     if (command.frame_done) command.frame_done(refused, nullptr);
+    if (command.checkpoint_done) command.checkpoint_done(refused, {});
   }
   for (auto& change : scheduled_) change.done(here(refused));
   for (auto& waiter : target_waiters_) waiter(here());
@@ -242,6 +271,7 @@ void Session::run_loop() {
 }
 
 void Session::initialise() {
+  if (config_.restore) return restore();
   try {
     journal_ = std::make_unique<JournalWriter>(config_.directory / "journal.jsonl");
     v1::JournalEntry entry;
@@ -365,6 +395,18 @@ void Session::apply(Command& c) {
       if (auto tap = c.tap.lock()) tap->take_frame(std::make_shared<const FieldFrame>(engine_->frame()));
       frame_taps_.push_back(std::move(c.tap));
       return;
+    case Command::Kind::checkpoint: {
+      std::unique_lock lock(mutex_);
+      if (!engine_ || state_ == v1::Simulation::FAILED) {
+        const std::string why = config_.name + " has failed (" + failure_reason_ + "): its state cannot be continued";
+        lock.unlock();
+        c.checkpoint_done({grpc::StatusCode::FAILED_PRECONDITION, why}, {});
+        return;
+      }
+      lock.unlock();
+      c.checkpoint_done(grpc::Status::OK, take_checkpoint(c.caller));
+      return;
+    }
   }
 }
 

@@ -24,6 +24,7 @@
 
 #include "cascade/v1/simulation.pb.h"
 #include "server/core/engine.h"
+#include "server/io/checkpoint_file.h"
 #include "server/io/journal.h"
 #include "server/io/probe_sampler.h"
 #include "server/service/frame_tap.h"
@@ -31,6 +32,12 @@
 namespace cascade::service {
 
 using EngineFactory = std::function<std::unique_ptr<Engine>(const EngineConfig&, const HostParticles&)>;
+
+// A checkpoint to start from instead of the case's initial state (RestoreCheckpoint).
+struct RestoreSource {
+  std::string checkpoint_name;  // simulations/{id}/checkpoints/{checkpoint_id}
+  Checkpoint checkpoint;
+};
 
 struct SessionConfig {
   std::string name;                  // simulations/{id}
@@ -41,6 +48,10 @@ struct SessionConfig {
   std::filesystem::path directory;   // holds journal.jsonl
   int threads = 0;                   // OpenMP threads of the solver thread; 0: OpenMP's default
   std::string caller;                // who created it (journal)
+  // Set: the engine takes the checkpoint's state (no initialisation stage), journal.jsonl becomes
+  // the checkpoint's journal (the one it replaces is kept as journal.jsonl.replaced-N) and the
+  // simulation is PAUSED there.
+  std::shared_ptr<const RestoreSource> restore;
 };
 
 class Session {
@@ -56,6 +67,8 @@ class Session {
   using Done = std::function<void(const Outcome&)>;
   // A query's frame, copied at a step boundary (null with a failed status).
   using FrameDone = std::function<void(const grpc::Status&, std::shared_ptr<const FieldFrame>)>;
+  // A checkpoint written at a step boundary: its file (empty with a failed status).
+  using CheckpointDone = std::function<void(const grpc::Status&, const std::filesystem::path&)>;
 
   // Starts the solver thread, which builds the engine and runs the case's initialisation stage.
   explicit Session(SessionConfig config);
@@ -77,10 +90,14 @@ class Session {
   // From the next step boundary on, offers `tap` every frame (the first at once); forgotten when
   // the tap is destroyed.
   void tap_frames(std::weak_ptr<FrameTap> tap);
+  // Writes a checkpoint (checkpoint_store.h) at the next step boundary; a running simulation goes
+  // on after it. FAILED_PRECONDITION for a FAILED simulation, whose state holds the failure.
+  void checkpoint(const std::string& caller, CheckpointDone done);
 
   // Ends the solver thread at the next step boundary (a running simulation pauses there), writes
-  // `reason` (shutdown, delete) to the journal and refuses what is still queued. Idempotent.
-  void stop(const std::string& reason, const std::string& caller);
+  // `reason` (shutdown, delete, restore) to the journal and refuses what is still queued; with
+  // `checkpoint_first`, a RUNNING or PAUSED simulation writes a checkpoint before. Idempotent.
+  void stop(const std::string& reason, const std::string& caller, bool checkpoint_first = false);
 
   const std::string& name() const { return config_.name; }
   const v1::ScenarioSpec& spec() const { return config_.spec; }
@@ -101,6 +118,8 @@ class Session {
   void enqueue(Command command);
   void run_loop();
   void initialise();
+  void restore();  // initialise() from config_.restore
+  std::filesystem::path take_checkpoint(const std::string& caller);
   void apply(Command& command);
   void apply_forcing_change(const ScheduledForcing& change);
   void advance();  // one step while running, with everything that follows it
@@ -123,6 +142,7 @@ class Session {
   std::deque<Command> queue_;
   bool stop_requested_ = false;
   std::string stop_reason_, stop_caller_;
+  bool checkpoint_on_stop_ = false;
   bool thread_ended_ = false;
   v1::Simulation::State state_ = v1::Simulation::CREATED;
   std::string failure_reason_;

@@ -73,7 +73,7 @@ void SimulationService::shutdown() {
     shutting_down_ = true;
     sessions.swap(sessions_);
   }
-  for (auto& [id, session] : sessions) session->stop("shutdown", "server");
+  for (auto& [id, session] : sessions) session->stop("shutdown", "server", /*checkpoint_first=*/true);
   watch_hub_.shutdown();
   snapshot_hub_.shutdown();
 }
@@ -99,6 +99,20 @@ std::string SimulationService::new_id() const {
   }
 }
 
+SessionConfig SimulationService::session_config(const std::string& id, v1::ScenarioSpec spec,
+                                              const std::string& caller) const {
+  SessionConfig session;
+  session.name = kNamePrefix + id;
+  session.particles = build_particle_set(spec).particles;
+  session.engine = engine_config(spec, session.particles, options_.precision, options_.device);
+  session.spec = std::move(spec);
+  session.make_engine = options_.make_engine ? options_.make_engine : EngineFactory(&cascade::make_engine);
+  session.directory = options_.data_dir / "simulations" / id;
+  session.threads = options_.threads;
+  session.caller = caller;
+  return session;
+}
+
 grpc::Status SimulationService::create(const grpc::CallbackServerContext& context,
                                        const v1::CreateSimulationRequest& request, v1::Simulation& response) {
   Caller caller;
@@ -107,8 +121,6 @@ grpc::Status SimulationService::create(const grpc::CallbackServerContext& contex
     if (auto status = check_simulation_id("simulation_id", request.simulation_id()); !status.ok()) return status;
 
   v1::ScenarioSpec spec;
-  ParticleSet set;
-  EngineConfig config;
   try {
     if (request.has_case_yaml()) {
       if (request.case_yaml().size() > kMaxCaseYamlBytes)
@@ -133,16 +145,16 @@ grpc::Status SimulationService::create(const grpc::CallbackServerContext& contex
   } catch (const CaseError& e) {
     return invalid(request.has_spec() ? "spec" : "case_yaml", e.what());
   }
+  SessionConfig session;
   try {
-    set = build_particle_set(spec);
-    if (set.particles.size() > options_.max_particles)
-      return {grpc::StatusCode::RESOURCE_EXHAUSTED,
-              "particles: the case has " + std::to_string(set.particles.size()) + ", the server takes at most " +
-                  std::to_string(options_.max_particles) + " (--max-particles)"};
-    config = engine_config(spec, set.particles, options_.precision, options_.device);
+    session = session_config(request.simulation_id(), std::move(spec), caller.name);
   } catch (const CaseError& e) {
     return invalid(request.has_spec() ? "spec" : "case_yaml", e.what());
   }
+  if (session.particles.size() > options_.max_particles)
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+            "particles: the case has " + std::to_string(session.particles.size()) + ", the server takes at most " +
+                std::to_string(options_.max_particles) + " (--max-particles)"};
 
   std::lock_guard lock(mutex_);
   if (shutting_down_) return {grpc::StatusCode::UNAVAILABLE, "the server is shutting down"};
@@ -157,15 +169,8 @@ grpc::Status SimulationService::create(const grpc::CallbackServerContext& contex
   std::filesystem::create_directories(directory, error);
   if (error) return {grpc::StatusCode::INTERNAL, "cannot create " + directory.string() + ": " + error.message()};
 
-  SessionConfig session;
   session.name = kNamePrefix + id;
-  session.spec = std::move(spec);
-  session.particles = std::move(set.particles);
-  session.engine = config;
-  session.make_engine = options_.make_engine ? options_.make_engine : EngineFactory(&cascade::make_engine);
   session.directory = directory;
-  session.threads = options_.threads;
-  session.caller = caller.name;
   auto created = std::make_shared<Session>(std::move(session));
   response = created->describe();
   sessions_.emplace(id, std::move(created));

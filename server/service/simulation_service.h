@@ -37,7 +37,8 @@ class SimulationService final : public v1::SimulationService::CallbackService {
   explicit SimulationService(ServiceOptions options);
   ~SimulationService() override;
 
-  // Stops every simulation (a running one pauses; each journal ends with `shutdown`) and ends the
+  // Stops every simulation (a running one pauses; a running or paused one writes a checkpoint;
+  // each journal ends with `shutdown`) and ends the
   // watch streams; later requests get UNAVAILABLE.
   void shutdown();
 
@@ -83,6 +84,16 @@ class SimulationService final : public v1::SimulationService::CallbackService {
                                            v1::SnapshotImage* response) override;
   grpc::ServerWriteReactor<v1::SnapshotImage>* StreamSnapshots(grpc::CallbackServerContext* context,
                                                                const v1::StreamSnapshotsRequest* request) override;
+  // Checkpoints (checkpoint_methods.cpp).
+  grpc::ServerUnaryReactor* CreateCheckpoint(grpc::CallbackServerContext* context,
+                                             const v1::CreateCheckpointRequest* request,
+                                             v1::Checkpoint* response) override;
+  grpc::ServerUnaryReactor* ListCheckpoints(grpc::CallbackServerContext* context,
+                                            const v1::ListCheckpointsRequest* request,
+                                            v1::ListCheckpointsResponse* response) override;
+  grpc::ServerUnaryReactor* RestoreCheckpoint(grpc::CallbackServerContext* context,
+                                              const v1::RestoreCheckpointRequest* request,
+                                              v1::Simulation* response) override;
 
  private:
   // Authorises the caller and finds the simulation named `name`: INVALID_ARGUMENT for a malformed
@@ -97,6 +108,11 @@ class SimulationService final : public v1::SimulationService::CallbackService {
   grpc::Status create(const grpc::CallbackServerContext& context, const v1::CreateSimulationRequest& request,
                       v1::Simulation& response);
   std::string new_id() const;  // under mutex_
+  grpc::Status restore(const grpc::CallbackServerContext& context, const v1::RestoreCheckpointRequest& request,
+                       v1::Simulation& response);
+  // The session of a simulation's engine from its spec, as CreateSimulation and RestoreCheckpoint
+  // build it. Throws CaseError.
+  SessionConfig session_config(const std::string& id, v1::ScenarioSpec spec, const std::string& caller) const;
 
   const ServiceOptions options_;
   mutable std::mutex mutex_;

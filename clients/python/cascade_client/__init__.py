@@ -24,6 +24,7 @@ import grpc
 import numpy as np
 from google.protobuf import field_mask_pb2
 
+from cascade.v1 import checkpoint_pb2
 from cascade.v1 import journal_pb2
 from cascade.v1 import scenario_pb2
 from cascade.v1 import simulation_pb2 as pb
@@ -162,6 +163,19 @@ class Simulation:
 
     def events(self, since_time=float("-inf")):
         return list(self.client.call("ListEvents", pb.ListEventsRequest(name=self.name, since_time=since_time)).events)
+
+    def checkpoint(self):
+        """Writes the complete state at the next step boundary; returns the Checkpoint (its .name
+        is simulations/{id}/checkpoints/{checkpoint_id})."""
+        return self.client.call("CreateCheckpoint", checkpoint_pb2.CreateCheckpointRequest(parent=self.name))
+
+    def checkpoints(self):
+        return list(self.client.call("ListCheckpoints", checkpoint_pb2.ListCheckpointsRequest(parent=self.name)).checkpoints)
+
+    def restore(self, checkpoint):
+        """Back to a checkpoint (its name, or its id such as "ckpt-0001"), PAUSED there."""
+        name = checkpoint if "/" in checkpoint else f"{self.name}/checkpoints/{checkpoint}"
+        return self.client.call("RestoreCheckpoint", checkpoint_pb2.RestoreCheckpointRequest(name=name))
 
     def watch(self, interval=1.0, events=False):
         """Statuses (and, with events=True, Events) as they come, until the simulation stops."""

@@ -1,0 +1,118 @@
+"""A real cascade-server under load and misuse: 16 watchers and concurrent queries while a
+simulation runs (no errors, the solver's steps/s do not collapse); clients that vanish mid-stream
+(the server keeps serving at the same pace); a simulation that blows up goes to FAILED with the
+reason while another on the same server keeps running."""
+
+import subprocess
+import threading
+import time
+import unittest
+
+import clitest
+
+LONG_RUN = ("end_time=1e7",)   # rain_column: 2 s steps, far more than a test waits for
+MEASURE_SECONDS = 2.0
+
+
+def steps_per_second(sim, seconds=MEASURE_SECONDS):
+    """The solver's rate over `seconds` of wall time, from the step counts the server reports."""
+    first = sim.get().status.step
+    start = time.time()
+    time.sleep(seconds)
+    return (sim.get().status.step - first) / (time.time() - start)
+
+
+class Load(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        clitest.use_python_client()
+        import cascade_client
+        cls.cascade_client = cascade_client
+
+    def test_sixteen_watchers_and_queries_while_running(self):
+        with clitest.Server("watchers") as server, self.cascade_client.Client(server.address) as client:
+            sim = client.create(clitest.fixture("rain_column"), overrides=LONG_RUN)
+            sim.start()
+            alone = steps_per_second(sim)
+            errors, received, stop = [], [0] * 20, threading.Event()
+
+            def watcher(k):
+                try:
+                    for _ in sim.watch(interval=0.05, events=True):
+                        received[k] += 1
+                        if stop.is_set():
+                            return
+                except Exception as e:  # noqa: BLE001  (any error fails the test)
+                    errors.append(e)
+
+            def querier(k):
+                try:
+                    while not stop.is_set():
+                        sim.query("pore_pressure", "velocity", phase="soil")
+                        received[k] += 1
+                except Exception as e:  # noqa: BLE001
+                    errors.append(e)
+
+            threads = [threading.Thread(target=watcher, args=(k,)) for k in range(16)]
+            threads += [threading.Thread(target=querier, args=(k,)) for k in range(16, 20)]
+            for t in threads:
+                t.start()
+            loaded = steps_per_second(sim)
+            stop.set()
+            for t in threads:
+                t.join(timeout=10)
+            self.assertEqual(errors, [])
+            self.assertTrue(all(n > 0 for n in received), received)
+            # Shared 2-core machine: the clients' own Python threads compete for the cores, so the
+            # bound is loose; a solver that waited for its clients would drop far below it.
+            self.assertGreater(loaded, 0.5 * alone, f"{loaded:.0f} steps/s with 16 watchers, {alone:.0f} without")
+            print(f"\nsteps/s: {alone:.0f} alone, {loaded:.0f} with 16 watchers and 4 query loops")
+
+    def test_clients_that_vanish_mid_stream(self):
+        with clitest.Server("vanishing") as server, self.cascade_client.Client(server.address) as client:
+            sim = client.create(clitest.fixture("rain_column"), overrides=LONG_RUN)
+            sim.start()
+            before = steps_per_second(sim)
+            # CLI watchers killed while their streams are open, and Python streams cancelled.
+            processes = [subprocess.Popen([str(clitest.CASCADE), "watch", sim.name, "--server", server.address,
+                                           "--interval", "0.05"], stdout=subprocess.PIPE) for _ in range(8)]
+            for p in processes:
+                p.stdout.readline()  # the stream is live
+                p.kill()
+                p.wait()
+                p.stdout.close()
+            for _ in range(8):
+                stream = client.stream("WatchSimulation", self.cascade_client.pb.WatchSimulationRequest(
+                    name=sim.name, interval_seconds=0.05))
+                next(stream)
+                stream.cancel()
+                chunks = client.stream("QueryFields", self.cascade_client.pb.QueryFieldsRequest(
+                    name=sim.name, fields=["pore_pressure"]))
+                chunks.cancel()
+            after = steps_per_second(sim)
+            self.assertEqual(sim.get().state, self.cascade_client.State.RUNNING)
+            self.assertGreater(after, 0.5 * before, f"{after:.0f} steps/s after, {before:.0f} before")
+            self.assertEqual(len(sim.query("pore_pressure")["pore_pressure"]), sim.get().particle_count)
+
+    def test_a_failing_simulation_leaves_the_other_running(self):
+        with clitest.Server("failing") as server, self.cascade_client.Client(server.address) as client:
+            healthy = client.create(clitest.fixture("rain_column"), overrides=LONG_RUN)
+            healthy.start()
+            # Water under an absurd gravity: the velocities overflow within a few steps.
+            broken = client.create(clitest.case("submerged_layer_2d"), overrides=("dp=0.02", "gravity=[0, -1e200]"))
+            broken.start()
+            deadline = time.time() + 30
+            while broken.get().state != self.cascade_client.State.FAILED:
+                self.assertLess(time.time(), deadline, broken.get())
+                time.sleep(0.05)
+            reason = broken.get().failure_reason
+            self.assertRegex(reason, "NaN|infinity|time step")
+            self.assertRegex(reason, r"t = .* s")
+            failures = [e for e in broken.events() if e.kind == "failure"]
+            self.assertEqual(len(failures), 1)
+            self.assertEqual(healthy.get().state, self.cascade_client.State.RUNNING)
+            self.assertGreater(steps_per_second(healthy, 0.5), 0)
+
+
+if __name__ == "__main__":
+    clitest.main()
