@@ -24,6 +24,7 @@
 #include "server/io/run_summary.h"
 #include "server/io/snapshot_writer.h"
 #include "server/io/vtk_writer.h"
+#include "server/scenario/cascade_events.h"
 #include "server/scenario/case_error.h"
 #include "server/scenario/case_loader.h"
 #include "server/scenario/engine_setup.h"
@@ -108,7 +109,8 @@ class Outputs {
         frame_interval_(spec.output().interval()),
         probe_interval_(spec.output().probe_interval() > 0 ? spec.output().probe_interval()
                                                           : spec.output().interval() / 10.0),
-        snapshots_(spec, dir / "snapshots") {
+        snapshots_(spec, dir / "snapshots"),
+        events_(spec, h, sampler_.names()) {
     std::filesystem::create_directories(dir);
     if (!spec.output().has_hdf5() || spec.output().hdf5()) hdf5_ = std::make_unique<Hdf5FieldWriter>(dir / "fields.h5");
     if (spec.output().vtk()) vtk_ = std::make_unique<VtkSeriesWriter>(dir / "vtk");
@@ -116,15 +118,19 @@ class Outputs {
   }
 
   // `force` (the start and the end of the run) writes each output unless it already holds this time.
-  void observe(const Engine& engine, bool force) {
+  // Returns the cascade's events (cascade_events.h) that fire at this probe sample.
+  std::vector<CascadeEvent> observe(const Engine& engine, bool force) {
     const double t = engine.time();
     const double frame_slack = 1e-12 * frame_interval_, probe_slack = 1e-12 * probe_interval_;
     const bool frame_due = force ? t != last_frame_time_ : t >= next_frame_ - frame_slack;
     const bool probe_due = force ? t != last_probe_time_ : t >= next_probe_ - probe_slack;
-    if (!frame_due && !probe_due) return;
+    if (!frame_due && !probe_due) return {};
     const FieldFrame frame = engine.frame();
+    std::vector<CascadeEvent> fired;
     if (probe_due) {
-      probes_->write_row(t, sampler_.sample(frame));
+      const std::vector<double> values = sampler_.sample(frame);
+      probes_->write_row(t, values);
+      fired = events_.observe(frame, values, engine.forcing().ponding_pressure);
       while (next_probe_ <= t + probe_slack) next_probe_ += probe_interval_;
       last_probe_time_ = t;
     }
@@ -135,6 +141,7 @@ class Outputs {
       while (next_frame_ <= t + frame_slack) next_frame_ += frame_interval_;
       last_frame_time_ = t;
     }
+    return fired;
   }
 
  private:
@@ -145,6 +152,7 @@ class Outputs {
   std::unique_ptr<VtkSeriesWriter> vtk_;
   std::unique_ptr<ProbeCsvWriter> probes_;
   SnapshotWriter snapshots_;
+  CascadeEventDetector events_;
 };
 
 std::string format_number(double v) {
@@ -269,7 +277,14 @@ int run_command(const std::vector<std::string>& args) {
     std::optional<JournalReplay> replay;
     if (!options.replay.empty()) replay.emplace(options.replay);
     Progress progress(end_time, stderr);
-    outputs.observe(*engine, true);
+    const auto record = [&](const std::vector<CascadeEvent>& fired) {
+      for (const CascadeEvent& e : fired) {
+        std::fprintf(stderr, "\ncascade run: t = %g s, step %llu: %s: %s\n", engine->time(),
+                     static_cast<unsigned long long>(engine->step_count()), e.kind.c_str(), e.message.c_str());
+        summary.events.push_back({engine->time(), engine->step_count(), e.kind, e.message});
+      }
+    };
+    record(outputs.observe(*engine, true));
     std::size_t lost = 0;
     while (engine->time() < end_time * (1 - 1e-12)) {
       if (g_signal.load() != 0) {
@@ -280,7 +295,7 @@ int run_command(const std::vector<std::string>& args) {
       const bool series_applies = !replay || replay->apply(*engine, config.dimensions, summary);
       if (series_applies) apply_rain_series(spec, *engine, summary);
       engine->step();
-      outputs.observe(*engine, false);
+      record(outputs.observe(*engine, false));
       progress.update(engine->time(), engine->step_count(), engine->last_dt());
       if (engine->lost_particles() != lost) {
         summary.events.push_back({engine->time(), engine->step_count(), "particles_lost",
@@ -290,7 +305,7 @@ int run_command(const std::vector<std::string>& args) {
         lost = engine->lost_particles();
       }
     }
-    outputs.observe(*engine, true);
+    record(outputs.observe(*engine, true));
     progress.finish(engine->time(), engine->step_count(), engine->last_dt());
     summary.status = RunSummary::Status::completed;
   } catch (const std::exception& e) {

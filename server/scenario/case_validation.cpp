@@ -54,6 +54,7 @@ class SpecChecker {
     check_probes();
     check_hydraulics();
     check_initialisation();
+    check_events();
   }
 
   // One snapshot of the spec's kind (dimensions, materials), as the snapshot RPCs ask for it.
@@ -534,6 +535,47 @@ class SpecChecker {
       error("initialisation.hydraulics.rainfall", "is a time series; the initialisation stage holds constant "
                                                   "conditions: give rainfall_intensity");
     check_hydraulic_boundary("initialisation.hydraulics", init.hydraulics());
+  }
+
+  // The cascade's events: each criterion's thresholds, and what it needs of the case.
+  void check_events() const {
+    if (!spec_.has_events()) return;
+    const pb::CascadeEvents& e = spec_.events();
+    const bool soil = !soil_material_indices(spec_).empty();
+    bool water = false;
+    for (const pb::Material& m : spec_.materials()) water = water || m.has_water();
+    if (e.ponding_started() && !soil) error("events.ponding_started", "watches the soil's free surface, and the case has no soil material");
+    if (e.has_landslide_onset()) {
+      const pb::LandslideOnset& l = e.landslide_onset();
+      if (!soil) error("events.landslide_onset", "watches the soil, and the case has no soil material");
+      positive("events.landslide_onset.plastic_strain", l.plastic_strain());
+      positive("events.landslide_onset.speed", l.speed());
+      positive("events.landslide_onset.volume", l.volume());
+    }
+    if (e.has_water_impact()) {
+      if (!soil || !water) error("events.water_impact", "needs soil and water in the case");
+      positive("events.water_impact.speed", e.water_impact().speed());
+    }
+    for (int i = 0; i < e.wave_at_gauge_size(); ++i) {
+      const pb::WaveAtGauge& w = e.wave_at_gauge(i);
+      const std::string key = indexed("events.wave_at_gauge", i);
+      const pb::Probe* probe = nullptr;
+      for (const pb::Probe& p : spec_.probes())
+        if (p.name() == w.probe()) probe = &p;
+      if (!probe || probe->kind() != pb::ELEVATION)
+        error(key + ".probe", "'" + w.probe() + "' is not the name of an elevation probe of the case");
+      positive(key + ".rise", w.rise());
+    }
+    for (int i = 0; i < e.overtopping_size(); ++i) {
+      const pb::Overtopping& o = e.overtopping(i);
+      const std::string key = indexed("events.overtopping", i);
+      if (!water) error(key, "watches the water, and the case has no water material");
+      if (o.name().empty()) error(key + ".name", "is missing: it names the line in the event");
+      if (o.axis() != "x" && !(dims_ == 3 && o.axis() == "y"))
+        error(key + ".axis", "'" + o.axis() + "' is not a horizontal axis of this case (" + (dims_ == 2 ? "x" : "x, y") + ")");
+      finite(key + ".position", o.position());
+      finite(key + ".above", o.above());
+    }
   }
 
   void check_hydraulic_boundary(const std::string& key, const pb::HydraulicBoundary& h) const {

@@ -282,6 +282,7 @@ void Session::initialise() {
     engine_ = config_.make_engine(config_.engine, config_.particles);
     probes_ = std::make_unique<ProbeSampler>(config_.spec, config_.engine.h,
                                              config_.engine.water_density * std::pow(config_.engine.dp, config_.engine.dimensions));
+    cascade_events_ = std::make_unique<CascadeEventDetector>(config_.spec, config_.engine.h, probes_->names());
     const std::uint64_t steps = run_initialisation(config_.spec, *engine_);
     if (steps > 0) add_event("initialisation", std::to_string(steps) + " steps; the clock restarts at t = 0", "server");
     rate_wall_ = wall_now();
@@ -552,15 +553,30 @@ void Session::sample_outputs(bool force) {
   }
   kinetic_energy_ = energy, max_soil_speed_ = max_soil_speed;
   last_energy_wall_ = wall_now();
-  std::lock_guard lock(mutex_);
-  if ((probe_due || force) && !probe_names_.empty() &&
-      (probe_samples_.empty() || probe_samples_.back().step() != engine_->step_count())) {
-    v1::ProbeSample sample;
-    sample.set_time(t);
-    sample.set_step(engine_->step_count());
-    for (double v : probes_->sample(frame)) sample.add_values(v);
-    probe_samples_.push_back(std::move(sample));
-    while (next_probe_time_ <= t + 1e-12 * probe_interval) next_probe_time_ += probe_interval;
+  std::vector<CascadeEvent> fired;
+  {
+    std::lock_guard lock(mutex_);
+    if ((probe_due || force) && (probe_samples_.empty() || probe_samples_.back().step() != engine_->step_count())) {
+      const std::vector<double> values = probes_->sample(frame);
+      fired = cascade_events_->observe(frame, values, engine_->forcing().ponding_pressure);
+      if (!probe_names_.empty()) {
+        v1::ProbeSample sample;
+        sample.set_time(t);
+        sample.set_step(engine_->step_count());
+        for (double v : values) sample.add_values(v);
+        probe_samples_.push_back(std::move(sample));
+      }
+      while (next_probe_time_ <= t + 1e-12 * probe_interval) next_probe_time_ += probe_interval;
+    }
+  }
+  // The cascade's moments (cascade_events.h): to the event list, the watch streams and the journal.
+  for (const CascadeEvent& e : fired) {
+    add_event(e.kind, e.message, "solver");
+    v1::JournalEntry entry;
+    entry.set_caller("solver");
+    entry.set_command(e.kind);
+    entry.set_detail(e.message);
+    journal(std::move(entry));
   }
 }
 

@@ -27,6 +27,7 @@
 #include "server/io/checkpoint_file.h"
 #include "server/io/journal.h"
 #include "server/io/probe_sampler.h"
+#include "server/scenario/cascade_events.h"
 #include "server/service/frame_tap.h"
 
 namespace cascade::service {
@@ -155,6 +156,7 @@ class Session {
   std::unique_ptr<Engine> engine_;
   std::unique_ptr<JournalWriter> journal_;
   std::unique_ptr<ProbeSampler> probes_;
+  std::unique_ptr<CascadeEventDetector> cascade_events_;  // ponding, onset, impact, waves, overtopping
   std::vector<ScheduledForcing> scheduled_;
   std::optional<std::uint64_t> stop_step_;
   std::optional<double> stop_time_;

@@ -72,6 +72,7 @@ void Session::restore() {
     engine_->restore(source.checkpoint.engine);
     probes_ = std::make_unique<ProbeSampler>(config_.spec, config_.engine.h,
                                              config_.engine.water_density * std::pow(config_.engine.dp, config_.engine.dimensions));
+    cascade_events_ = std::make_unique<CascadeEventDetector>(config_.spec, config_.engine.h, probes_->names());
     v1::JournalEntry entry;
     entry.set_command("restore");
     entry.set_caller(config_.caller);

@@ -1111,3 +1111,30 @@ TEST(CaseSnapshots, BadValuesNameTheKey) {
 }
 
 }  // namespace cascade
+
+namespace cascade {
+namespace {
+
+// The cascade's event criteria (scenario.proto, CascadeEvents): thresholds > 0, a gauge is an
+// elevation probe, each needs the phases it watches.
+TEST(CascadeEventErrors, EachBadCriterionNamesItsKey) {
+  expect_error(base() + "events: {ponding_started: true}\n",
+               {"events.ponding_started", 26, "the case has no soil material"});
+  expect_error(soil_base() + "events: {landslide_onset: {plastic_strain: 0.05, speed: 0, volume: 0.01}}\n",
+               {"events.landslide_onset.speed", 33, "must be greater than 0"});
+  expect_error(soil_base() + "events: {water_impact: {speed: 0.1}}\n",
+               {"events.water_impact", 33, "needs soil and water"});
+  expect_error(base() + "events: {wave_at_gauge: [{probe: p, rise: 0.01}]}\n",
+               {"events.wave_at_gauge[0].probe", 26, "'p' is not the name of an elevation probe"});
+  expect_error(base() + "  - {name: g, kind: elevation, position: [0.5]}\n"
+                        "events: {wave_at_gauge: [{probe: g, rise: -1}]}\n",
+               {"events.wave_at_gauge[0].rise", 27, "must be greater than 0"});
+  expect_error(base() + "events: {overtopping: [{name: bank, axis: z, position: 1, above: 0.5}]}\n",
+               {"events.overtopping[0].axis", 26, "'z' is not a horizontal axis"});
+  const pb::ScenarioSpec spec =
+      load_case_text(base() + "events: {overtopping: [{name: bank, axis: x, position: 0.9, above: 0.4}]}\n");
+  EXPECT_EQ(spec.events().overtopping(0).name(), "bank");
+}
+
+}  // namespace
+}  // namespace cascade
