@@ -6,11 +6,7 @@ import unittest
 
 import clitest
 
-clitest_token_file = """# name role token
-alice operator operator-token-0123456789
-bob viewer viewer-token-0123456789
-"""
-OPERATOR, VIEWER = "operator-token-0123456789", "viewer-token-0123456789"
+OPERATOR, VIEWER = clitest.OPERATOR_TOKEN, clitest.VIEWER_TOKEN
 
 
 def import_api():
@@ -140,9 +136,7 @@ class BadRequests(unittest.TestCase):
 
 class Tokens(unittest.TestCase):
     def test_roles(self):
-        tokens = clitest.WORK_DIR / "tokens.txt"
-        tokens.write_text(clitest_token_file)
-        with clitest.Server("tokens", "--tokens", tokens) as server:
+        with clitest.Server("tokens", "--tokens", clitest.token_file()) as server:
             case = clitest.fixture("rain_column")
             p = server.cli("list")
             self.assertEqual(p.returncode, 1)
@@ -160,13 +154,6 @@ class Tokens(unittest.TestCase):
             self.assertEqual(server.cli("step", "t", "2", token=OPERATOR).returncode, 0)
             journal = server.data_dir / "simulations" / "t" / "journal.jsonl"
             self.assertIn('"caller":"alice"', journal.read_text())
-
-    def test_non_loopback_needs_tls_and_tokens(self):
-        p = clitest.subprocess.run([str(clitest.CASCADE.parent / "cascade-server"), "--listen", "0.0.0.0:0",
-                                    "--data-dir", str(clitest.WORK_DIR / "open")], capture_output=True, text=True,
-                                   timeout=30)
-        self.assertEqual(p.returncode, 2)
-        self.assertIn("--tls-cert", p.stderr)
 
 
 if __name__ == "__main__":
