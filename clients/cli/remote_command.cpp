@@ -73,13 +73,33 @@ double number(const std::string& what, const std::string& text) {
   throw UsageError(what + " needs a number, got '" + text + "'");
 }
 
-// "1,2,3" → {1, 2, 3}, exactly `count` of them.
-std::vector<double> numbers(const std::string& what, const std::string& text, std::size_t count, const char* form) {
+// "1,2,3" → {1, 2, 3}.
+std::vector<double> number_list(const std::string& what, const std::string& text) {
   std::vector<double> v;
   std::stringstream parts(text);
   for (std::string part; std::getline(parts, part, ',');) v.push_back(number(what, part));
+  return v;
+}
+
+// As number_list, exactly `count` of them.
+std::vector<double> numbers(const std::string& what, const std::string& text, std::size_t count, const char* form) {
+  auto v = number_list(what, text);
   if (v.size() != count) throw UsageError(what + " needs " + form);
   return v;
+}
+
+// "X0,Z0,X1,Z1" (2D) or "X0,Y0,Z0,X1,Y1,Z1" (3D) → the box from min to max. The server checks
+// that the count matches the simulation's dimensions.
+v1::Box region(const std::string& what, const std::string& text) {
+  const auto v = number_list(what, text);
+  if (v.size() != 4 && v.size() != 6) throw UsageError(what + " needs X0,Z0,X1,Z1 (2D) or X0,Y0,Z0,X1,Y1,Z1 (3D), or none");
+  v1::Box box;
+  const std::size_t half = v.size() / 2;
+  for (std::size_t a = 0; a < half; ++a) {
+    box.add_min(v[a]);
+    box.add_max(v[a + half]);
+  }
+  return box;
 }
 
 std::string json_of(const google::protobuf::Message& message) {
@@ -211,7 +231,8 @@ int list(Remote& remote) {
 int set_forcing(Remote& remote) {
   v1::UpdateForcingRequest request;
   request.set_name(remote.simulation());
-  if (remote.args().positional.size() < 2) throw UsageError("set needs KEY=VALUE (rainfall.intensity, ponding.p_max, ponding.p_min)");
+  const std::string steerable = "(rainfall.intensity, rainfall.region, ponding.p_max, ponding.p_min)";
+  if (remote.args().positional.size() < 2) throw UsageError("set needs KEY=VALUE " + steerable);
   for (std::size_t k = 1; k < remote.args().positional.size(); ++k) {
     const std::string& pair = remote.args().positional[k];
     const auto eq = pair.find('=');
@@ -219,10 +240,12 @@ int set_forcing(Remote& remote) {
     const std::string key = pair.substr(0, eq), value = pair.substr(eq + 1);
     auto* f = request.mutable_forcing();
     if (key == "rainfall.intensity") f->mutable_rainfall()->set_intensity(number(key, value));
-    else if (key == "ponding.p_max") f->mutable_ponding()->set_p_max(number(key, value));
+    else if (key == "rainfall.region") {
+      if (value != "none") *f->mutable_rainfall()->mutable_region() = region(key, value);
+    } else if (key == "ponding.p_max") f->mutable_ponding()->set_p_max(number(key, value));
     else if (key == "ponding.p_min") {
       if (value != "none") f->mutable_ponding()->set_p_min(number(key, value));
-    } else throw UsageError("set: '" + key + "' is not steerable here (rainfall.intensity, ponding.p_max, ponding.p_min)");
+    } else throw UsageError("set: '" + key + "' is not steerable here " + steerable);
     request.mutable_update_mask()->add_paths(key);
   }
   if (const std::string at = remote.args().option("--at"); !at.empty()) request.set_effective_time(number("--at", at));

@@ -3,7 +3,9 @@
 //   create CASE.yaml [--set k=v]... [--id ID]     list
 //   get SIM   start SIM   pause SIM   resume SIM   delete SIM
 //   step SIM N        run-until SIM T
-//   set SIM KEY=VALUE... [--at T]   (rainfall.intensity, ponding.p_max, ponding.p_min; p_min=none)
+//   set SIM KEY=VALUE... [--at T]   (rainfall.intensity, rainfall.region=X0,Z0,X1,Z1 in 2D or
+//                                    X0,Y0,Z0,X1,Y1,Z1 in 3D, ponding.p_max, ponding.p_min;
+//                                    region=none, p_min=none: unset)
 //   watch SIM [--interval S]        (a progress line per status, events as they come)
 //   query SIM FIELD... [--phase water|soil|boundary] [--box X0,Y0,Z0,X1,Y1,Z1] [--stride N] --out F.h5|F.csv
 //   probes SIM [--since T]          events SIM [--since T]

@@ -30,7 +30,7 @@ grpc::ServerUnaryReactor* SimulationService::CreateCheckpoint(grpc::CallbackServ
                                                               v1::Checkpoint* response) {
   Caller caller;
   std::shared_ptr<Session> session;
-  if (auto status = lookup(*context, request->parent(), Role::operator_, caller, session); !status.ok())
+  if (auto status = lookup(*context, *request, request->parent(), Role::operator_, caller, session); !status.ok())
     return reply(context, about_parent(status));
   auto* reactor = context->DefaultReactor();
   const std::string name = session->name();
@@ -50,7 +50,7 @@ grpc::ServerUnaryReactor* SimulationService::ListCheckpoints(grpc::CallbackServe
                                                              const v1::ListCheckpointsRequest* request,
                                                              v1::ListCheckpointsResponse* response) {
   Caller caller;
-  if (auto status = options_.access.authorize(*context, Role::viewer, caller); !status.ok()) return reply(context, status);
+  if (auto status = admit(*context, *request, Role::viewer, caller); !status.ok()) return reply(context, status);
   std::string id;
   if (auto status = check_simulation_name("parent", request->parent(), id); !status.ok()) return reply(context, status);
   const auto directory = options_.data_dir / "simulations" / id;
@@ -73,7 +73,7 @@ grpc::ServerUnaryReactor* SimulationService::RestoreCheckpoint(grpc::CallbackSer
 grpc::Status SimulationService::restore(const grpc::CallbackServerContext& context,
                                         const v1::RestoreCheckpointRequest& request, v1::Simulation& response) {
   Caller caller;
-  if (auto status = options_.access.authorize(context, Role::operator_, caller); !status.ok()) return status;
+  if (auto status = admit(context, request, Role::operator_, caller); !status.ok()) return status;
   std::string id, checkpoint_id;
   if (auto status = parse_checkpoint_name("name", request.name(), id, checkpoint_id); !status.ok()) return status;
   const auto path = checkpoint_directory(options_.data_dir / "simulations" / id) / (checkpoint_id + ".h5");

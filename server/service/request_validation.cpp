@@ -1,7 +1,11 @@
 #include "server/service/request_validation.h"
 
+#include <google/protobuf/message.h>
+#include <google/protobuf/unknown_field_set.h>
+
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "server/scenario/forcing_message.h"
 
@@ -30,7 +34,37 @@ grpc::Status check_box(const std::string& field, const v1::Box& box, int compone
   return grpc::Status::OK;
 }
 
+// check_known_fields of the message held by the field `path` ("request" at the top).
+grpc::Status check_known_fields(const google::protobuf::Message& message, const std::string& path) {
+  const google::protobuf::Reflection& reflection = *message.GetReflection();
+  if (const auto& unknown = reflection.GetUnknownFields(message); !unknown.empty()) {
+    const std::string number = std::to_string(unknown.field(0).number());
+    return invalid(path, "unknown field number " + number + " (" + message.GetDescriptor()->full_name() +
+                             " has no field " + number + " in this server; is the client newer?)");
+  }
+  std::vector<const google::protobuf::FieldDescriptor*> fields;
+  reflection.ListFields(message, &fields);
+  for (const auto* field : fields) {
+    if (field->cpp_type() != google::protobuf::FieldDescriptor::CPPTYPE_MESSAGE) continue;
+    const std::string inner = path == "request" ? field->name() : path + "." + field->name();
+    if (!field->is_repeated()) {
+      if (auto status = check_known_fields(reflection.GetMessage(message, field), inner); !status.ok()) return status;
+      continue;
+    }
+    for (int k = 0; k < reflection.FieldSize(message, field); ++k)
+      if (auto status = check_known_fields(reflection.GetRepeatedMessage(message, field, k),
+                                           inner + "[" + std::to_string(k) + "]");
+          !status.ok())
+        return status;
+  }
+  return grpc::Status::OK;
+}
+
 }  // namespace
+
+grpc::Status check_known_fields(const google::protobuf::Message& request) {
+  return check_known_fields(request, "request");
+}
 
 grpc::Status invalid(const std::string& field, const std::string& message) {
   return {grpc::StatusCode::INVALID_ARGUMENT, field + ": " + message};

@@ -3,6 +3,7 @@
 // ...`), so a client can tell which field to fix.
 #pragma once
 
+#include <google/protobuf/message.h>
 #include <grpcpp/support/status.h>
 
 #include <string>
@@ -20,6 +21,11 @@ constexpr std::size_t kMaxCaseYamlBytes = 1 << 20;
 constexpr double kMinWatchInterval = 0.05, kMaxWatchInterval = 3600;  // s of wall time
 
 grpc::Status invalid(const std::string& field, const std::string& message);
+
+// A field this server does not know (a newer client's, or a mistake) would otherwise be dropped
+// silently, and the caller would believe that a setting applied. Checks `request` and every
+// message inside it: `forcing.rainfall: unknown field number 17 (...)`.
+grpc::Status check_known_fields(const google::protobuf::Message& request);
 
 // `name` is simulations/{id} with a valid id; `id` receives it.
 grpc::Status check_simulation_name(const std::string& field, const std::string& name, std::string& id);

@@ -78,9 +78,16 @@ void SimulationService::shutdown() {
   snapshot_hub_.shutdown();
 }
 
-grpc::Status SimulationService::lookup(const grpc::CallbackServerContext& context, const std::string& name,
-                                       Role needed, Caller& caller, std::shared_ptr<Session>& session) const {
+grpc::Status SimulationService::admit(const grpc::CallbackServerContext& context,
+                                      const google::protobuf::Message& request, Role needed, Caller& caller) const {
   if (auto status = options_.access.authorize(context, needed, caller); !status.ok()) return status;
+  return check_known_fields(request);
+}
+
+grpc::Status SimulationService::lookup(const grpc::CallbackServerContext& context,
+                                       const google::protobuf::Message& request, const std::string& name,
+                                       Role needed, Caller& caller, std::shared_ptr<Session>& session) const {
+  if (auto status = admit(context, request, needed, caller); !status.ok()) return status;
   std::string id;
   if (auto status = check_simulation_name("name", name, id); !status.ok()) return status;
   std::lock_guard lock(mutex_);
@@ -116,7 +123,7 @@ SessionConfig SimulationService::session_config(const std::string& id, v1::Scena
 grpc::Status SimulationService::create(const grpc::CallbackServerContext& context,
                                        const v1::CreateSimulationRequest& request, v1::Simulation& response) {
   Caller caller;
-  if (auto status = options_.access.authorize(context, Role::operator_, caller); !status.ok()) return status;
+  if (auto status = admit(context, request, Role::operator_, caller); !status.ok()) return status;
   if (!request.simulation_id().empty())
     if (auto status = check_simulation_id("simulation_id", request.simulation_id()); !status.ok()) return status;
 
@@ -188,16 +195,16 @@ grpc::ServerUnaryReactor* SimulationService::GetSimulation(grpc::CallbackServerC
                                                            v1::Simulation* response) {
   Caller caller;
   std::shared_ptr<Session> session;
-  auto status = lookup(*context, request->name(), Role::viewer, caller, session);
+  auto status = lookup(*context, *request, request->name(), Role::viewer, caller, session);
   if (status.ok()) *response = session->describe();
   return finish(context, status);
 }
 
 grpc::ServerUnaryReactor* SimulationService::ListSimulations(grpc::CallbackServerContext* context,
-                                                             const v1::ListSimulationsRequest*,
+                                                             const v1::ListSimulationsRequest* request,
                                                              v1::ListSimulationsResponse* response) {
   Caller caller;
-  if (auto status = options_.access.authorize(*context, Role::viewer, caller); !status.ok())
+  if (auto status = admit(*context, *request, Role::viewer, caller); !status.ok())
     return finish(context, status);
   std::lock_guard lock(mutex_);
   for (const auto& [id, session] : sessions_) *response->add_simulations() = session->describe();
@@ -209,7 +216,7 @@ grpc::ServerUnaryReactor* SimulationService::DeleteSimulation(grpc::CallbackServ
                                                               google::protobuf::Empty*) {
   Caller caller;
   std::shared_ptr<Session> session;
-  if (auto status = lookup(*context, request->name(), Role::operator_, caller, session); !status.ok())
+  if (auto status = lookup(*context, *request, request->name(), Role::operator_, caller, session); !status.ok())
     return finish(context, status);
   {
     std::lock_guard lock(mutex_);
@@ -221,11 +228,12 @@ grpc::ServerUnaryReactor* SimulationService::DeleteSimulation(grpc::CallbackServ
 }
 
 template <typename Command>
-grpc::ServerUnaryReactor* SimulationService::control(grpc::CallbackServerContext* context, const std::string& name,
+grpc::ServerUnaryReactor* SimulationService::control(grpc::CallbackServerContext* context,
+                                                     const google::protobuf::Message& request, const std::string& name,
                                                      v1::Simulation* response, Command command) {
   Caller caller;
   std::shared_ptr<Session> session;
-  if (auto status = lookup(*context, name, Role::operator_, caller, session); !status.ok())
+  if (auto status = lookup(*context, request, name, Role::operator_, caller, session); !status.ok())
     return finish(context, status);
   auto* reactor = context->DefaultReactor();
   // The session outlives its solver thread's callbacks (stop() joins it), so a plain pointer does.
@@ -240,21 +248,21 @@ grpc::ServerUnaryReactor* SimulationService::control(grpc::CallbackServerContext
 grpc::ServerUnaryReactor* SimulationService::StartSimulation(grpc::CallbackServerContext* context,
                                                              const v1::StartSimulationRequest* request,
                                                              v1::Simulation* response) {
-  return control(context, request->name(), response,
+  return control(context, *request, request->name(), response,
                  [](Session& s, const std::string& caller, Session::Done done) { s.start(caller, std::move(done)); });
 }
 
 grpc::ServerUnaryReactor* SimulationService::PauseSimulation(grpc::CallbackServerContext* context,
                                                              const v1::PauseSimulationRequest* request,
                                                              v1::Simulation* response) {
-  return control(context, request->name(), response,
+  return control(context, *request, request->name(), response,
                  [](Session& s, const std::string& caller, Session::Done done) { s.pause(caller, std::move(done)); });
 }
 
 grpc::ServerUnaryReactor* SimulationService::ResumeSimulation(grpc::CallbackServerContext* context,
                                                               const v1::ResumeSimulationRequest* request,
                                                               v1::Simulation* response) {
-  return control(context, request->name(), response,
+  return control(context, *request, request->name(), response,
                  [](Session& s, const std::string& caller, Session::Done done) { s.resume(caller, std::move(done)); });
 }
 
@@ -263,7 +271,7 @@ grpc::ServerUnaryReactor* SimulationService::StepSimulation(grpc::CallbackServer
                                                             v1::Simulation* response) {
   if (auto status = check_step(*request); !status.ok()) return finish(context, status);
   const std::uint64_t steps = request->steps();
-  return control(context, request->name(), response, [steps](Session& s, const std::string& caller, Session::Done done) {
+  return control(context, *request, request->name(), response, [steps](Session& s, const std::string& caller, Session::Done done) {
     s.step(steps, caller, std::move(done));
   });
 }
@@ -272,7 +280,7 @@ grpc::ServerUnaryReactor* SimulationService::RunSimulationUntil(grpc::CallbackSe
                                                                 const v1::RunSimulationUntilRequest* request,
                                                                 v1::Simulation* response) {
   const v1::RunSimulationUntilRequest checked = *request;
-  return control(context, request->name(), response,
+  return control(context, *request, request->name(), response,
                  [checked](Session& s, const std::string& caller, Session::Done done) {
                    if (auto status = check_run_until(checked, s.spec().end_time()); !status.ok())
                      return done({status, 0, 0});
@@ -285,7 +293,7 @@ grpc::ServerUnaryReactor* SimulationService::UpdateForcing(grpc::CallbackServerC
                                                            v1::UpdateForcingResponse* response) {
   Caller caller;
   std::shared_ptr<Session> session;
-  if (auto status = lookup(*context, request->name(), Role::operator_, caller, session); !status.ok())
+  if (auto status = lookup(*context, *request, request->name(), Role::operator_, caller, session); !status.ok())
     return finish(context, status);
   const auto current = session->describe().forcing();
   if (auto status = check_update_forcing(*request, current, session->spec().dimensions(), session->spec().end_time());
@@ -311,7 +319,7 @@ grpc::ServerWriteReactor<v1::FieldChunk>* SimulationService::QueryFields(grpc::C
                                                                          const v1::QueryFieldsRequest* request) {
   Caller caller;
   std::shared_ptr<Session> session;
-  auto status = lookup(*context, request->name(), Role::viewer, caller, session);
+  auto status = lookup(*context, *request, request->name(), Role::viewer, caller, session);
   if (status.ok()) status = check_query(*request);
   if (!status.ok()) return new FailedStream<v1::FieldChunk>(status);
   auto* stream = new FieldQueryStream(*request);
@@ -326,7 +334,7 @@ grpc::ServerUnaryReactor* SimulationService::ListProbes(grpc::CallbackServerCont
                                                         v1::ListProbesResponse* response) {
   Caller caller;
   std::shared_ptr<Session> session;
-  auto status = lookup(*context, request->name(), Role::viewer, caller, session);
+  auto status = lookup(*context, *request, request->name(), Role::viewer, caller, session);
   if (status.ok()) status = check_since_time(request->since_time());
   if (status.ok()) {
     for (const auto& name : session->probe_names()) response->add_probe_names(name);
@@ -340,7 +348,7 @@ grpc::ServerUnaryReactor* SimulationService::ListEvents(grpc::CallbackServerCont
                                                         v1::ListEventsResponse* response) {
   Caller caller;
   std::shared_ptr<Session> session;
-  auto status = lookup(*context, request->name(), Role::viewer, caller, session);
+  auto status = lookup(*context, *request, request->name(), Role::viewer, caller, session);
   if (status.ok()) status = check_since_time(request->since_time());
   if (status.ok())
     for (auto& event : session->events())
@@ -352,7 +360,7 @@ grpc::ServerWriteReactor<v1::WatchSimulationResponse>* SimulationService::WatchS
     grpc::CallbackServerContext* context, const v1::WatchSimulationRequest* request) {
   Caller caller;
   std::shared_ptr<Session> session;
-  auto status = lookup(*context, request->name(), Role::viewer, caller, session);
+  auto status = lookup(*context, *request, request->name(), Role::viewer, caller, session);
   if (status.ok()) status = check_watch(*request);
   if (!status.ok()) return new FailedStream<v1::WatchSimulationResponse>(status);
   const double interval = request->interval_seconds() > 0 ? request->interval_seconds() : 1.0;
@@ -366,7 +374,7 @@ grpc::ServerUnaryReactor* SimulationService::RenderSnapshot(grpc::CallbackServer
   Caller caller;
   std::shared_ptr<Session> session;
   render::SnapshotSettings settings;
-  auto status = lookup(*context, request->name(), Role::viewer, caller, session);
+  auto status = lookup(*context, *request, request->name(), Role::viewer, caller, session);
   if (status.ok()) status = snapshot_settings_for(session->spec(), request->snapshot(), settings);
   if (!status.ok()) return finish(context, status);
   auto* reactor = context->DefaultReactor();
@@ -386,7 +394,7 @@ grpc::ServerWriteReactor<v1::SnapshotImage>* SimulationService::StreamSnapshots(
   Caller caller;
   std::shared_ptr<Session> session;
   render::SnapshotSettings settings;
-  auto status = lookup(*context, request->name(), Role::viewer, caller, session);
+  auto status = lookup(*context, *request, request->name(), Role::viewer, caller, session);
   if (status.ok()) status = snapshot_settings_for(session->spec(), request->snapshot(), settings);
   if (status.ok()) status = check_snapshot_interval(*request);
   if (!status.ok()) return new FailedStream<v1::SnapshotImage>(status);

@@ -96,15 +96,19 @@ class SimulationService final : public v1::SimulationService::CallbackService {
                                               v1::Simulation* response) override;
 
  private:
-  // Authorises the caller and finds the simulation named `name`: INVALID_ARGUMENT for a malformed
-  // name, NOT_FOUND for an unknown one.
-  grpc::Status lookup(const grpc::CallbackServerContext& context, const std::string& name, Role needed, Caller& caller,
-                      std::shared_ptr<Session>& session) const;
+  // Authorises the caller, then refuses a request with fields this server does not know
+  // (check_known_fields). Every method starts with it.
+  grpc::Status admit(const grpc::CallbackServerContext& context, const google::protobuf::Message& request, Role needed,
+                     Caller& caller) const;
+  // admit(), then finds the simulation named `name`: INVALID_ARGUMENT for a malformed name,
+  // NOT_FOUND for an unknown one.
+  grpc::Status lookup(const grpc::CallbackServerContext& context, const google::protobuf::Message& request,
+                      const std::string& name, Role needed, Caller& caller, std::shared_ptr<Session>& session) const;
   // The run-control methods: look up, then `command(session, caller, done)`; the reply is the
   // Simulation once the command is done.
   template <typename Command>
-  grpc::ServerUnaryReactor* control(grpc::CallbackServerContext* context, const std::string& name,
-                                    v1::Simulation* response, Command command);
+  grpc::ServerUnaryReactor* control(grpc::CallbackServerContext* context, const google::protobuf::Message& request,
+                                    const std::string& name, v1::Simulation* response, Command command);
   grpc::Status create(const grpc::CallbackServerContext& context, const v1::CreateSimulationRequest& request,
                       v1::Simulation& response);
   std::string new_id() const;  // under mutex_

@@ -85,26 +85,42 @@ def use_python_client():
             sys.path.insert(0, str(path))
 
 
-class Server:
-    """A cascade-server process on a free loopback port (`with Server(...) as server:`); leaving the
-    block sends SIGTERM and checks that it exits 0. `server.address` is HOST:PORT. `env`: variables
-    added to the server's environment."""
+OPERATOR_TOKEN, VIEWER_TOKEN = "operator-token-0123456789", "viewer-token-0123456789"
 
-    def __init__(self, name, *args, env=None):
+
+def token_file():
+    """A cascade-server --tokens file under the work dir: alice the operator, bob the viewer."""
+    path = WORK_DIR / "tokens.txt"
+    path.write_text(f"# name role token\nalice operator {OPERATOR_TOKEN}\nbob viewer {VIEWER_TOKEN}\n")
+    return path
+
+
+class Server:
+    """A cascade-server process on a free port (`with Server(...) as server:`); leaving the block
+    sends SIGTERM and checks that it exits 0. `server.address` is 127.0.0.1:PORT (also when it
+    listens on another host, e.g. `listen="0.0.0.0:0"`). `env`: variables added to the server's
+    environment. `server.warnings`: the lines it printed before the one that says where it listens."""
+
+    def __init__(self, name, *args, env=None, listen="127.0.0.1:0"):
         self.env = {**os.environ, **(env or {})}
         self.data_dir = WORK_DIR / name
-        self.args = [str(CASCADE.parent / "cascade-server"), "--listen", "127.0.0.1:0", "--data-dir",
+        self.args = [str(CASCADE.parent / "cascade-server"), "--listen", listen, "--data-dir",
                      str(self.data_dir), "--threads", "1", *map(str, args)]
         self.process = None
         self.address = None
 
     def __enter__(self):
         self.process = subprocess.Popen(self.args, stderr=subprocess.PIPE, text=True, env=self.env)
+        self.warnings = []
         line = self.process.stderr.readline()
+        while "WARNING" in line:
+            self.warnings.append(line)
+            line = self.process.stderr.readline()
         if "listening on " not in line:
             self.process.kill()
             raise AssertionError(f"cascade-server did not start: {line}{self.process.stderr.read()}")
-        self.address = line.split("listening on ")[1].split(",")[0]
+        port = line.split("listening on ")[1].split(",")[0].rsplit(":", 1)[1]
+        self.address = f"127.0.0.1:{port}"
         return self
 
     def stop(self):

@@ -11,9 +11,6 @@ import unittest
 
 import clitest
 
-clitest_tokens = """alice operator operator-token-0123456789
-bob viewer viewer-token-0123456789
-"""
 STREAMS = 4
 
 
@@ -167,12 +164,10 @@ class Snapshots(unittest.TestCase):
 
     def test_viewers_may_render(self):
         _, cascade_client, _, _ = import_api()
-        tokens = clitest.WORK_DIR / "tokens"
-        tokens.write_text(clitest_tokens)
-        with clitest.Server("viewer", "--tokens", tokens) as server:
-            with cascade_client.Client(server.address, token="operator-token-0123456789") as operator:
+        with clitest.Server("viewer", "--tokens", clitest.token_file()) as server:
+            with cascade_client.Client(server.address, token=clitest.OPERATOR_TOKEN) as operator:
                 name = operator.create(clitest.fixture("rain_column")).name
-            with cascade_client.Client(server.address, token="viewer-token-0123456789") as viewer:
+            with cascade_client.Client(server.address, token=clitest.VIEWER_TOKEN) as viewer:
                 sim = viewer.simulation(name)
                 self.assertEqual(clitest.png_pixels(sim.snapshot(width=64, height=48))[:2], (64, 48))
                 first = next(iter(sim.snapshots(every_wall_seconds=1, width=64, height=48)))

@@ -1,6 +1,7 @@
 """Steering on a real cascade-server: a rainfall increase takes effect at the next step boundary
 and speeds the rise of pore pressure at a probe compared with the same run without it; replaying
-the steered run's journal with `cascade run --replay` gives the same bits."""
+the steered run's journal with `cascade run --replay` gives the same bits; `cascade set
+rainfall.region` confines the rain to a box."""
 
 import json
 import unittest
@@ -87,6 +88,40 @@ class RainfallIncrease(unittest.TestCase):
         with h5py.File(plain / "fields.h5") as f:
             last = f["frames"][sorted(f["frames"].keys())[-1]]
             self.assertNotEqual(last["pore_pressure"][()].tobytes(), self.server_end["pore_pressure"].tobytes())
+
+
+class RainfallRegion(unittest.TestCase):
+    def test_rain_only_inside_the_region(self):
+        h5py = clitest.import_h5py()
+        with clitest.Server("region") as server:
+            self.assertEqual(server.cli("create", clitest.fixture("rain_column"), "--id", "r").returncode, 0)
+            # The left third of the column's top (x < 0.4 m) gets heavy rain, the rest none.
+            p = server.cli("set", "r", f"rainfall.intensity={RAIN_AFTER}", "rainfall.region=0,0.5,0.4,1.1", "--json")
+            self.assertEqual(p.returncode, 0, p.stderr)
+            region = json.loads(p.stdout)["forcing"]["rainfall"]["region"]
+            self.assertEqual((region["min"], region["max"]), ([0, 0.5], [0.4, 1.1]))
+            self.assertEqual(server.cli("step", "r", "150").returncode, 0)
+            out = clitest.WORK_DIR / "region.h5"
+            p = server.cli("query", "r", "pore_pressure", "--phase", "soil", "--out", out)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            with h5py.File(out) as f:
+                frame = f["frames"]["000000"]
+                x, z = frame["position"][:, 0], frame["position"][:, 2]
+                pressure = frame["pore_pressure"][()].ravel()
+            top = z > 0.8
+            wet = pressure[top & (x < 0.4)].mean()
+            dry = pressure[top & (x > 0.6) & (x < 1.0)].mean()
+            self.assertGreater(wet - dry, 1000.0, f"{wet:.0f} Pa under the rain, {dry:.0f} Pa beside it")
+
+            p = server.cli("set", "r", "rainfall.region=none", "--json")
+            self.assertNotIn("region", json.loads(p.stdout)["forcing"]["rainfall"])
+            p = server.cli("set", "r", "rainfall.region=0,0.5,0.4")
+            self.assertEqual(p.returncode, 2)
+            self.assertIn("rainfall.region needs X0,Z0,X1,Z1 (2D) or X0,Y0,Z0,X1,Y1,Z1 (3D)", p.stderr)
+            p = server.cli("set", "r", "rainfall.region=0,0,0.5,0.4,1,1.1")   # 3D in a 2D simulation
+            self.assertEqual(p.returncode, 1)
+            self.assertIn("INVALID_ARGUMENT", p.stderr)
+            self.assertIn("forcing.rainfall.region", p.stderr)
 
 
 if __name__ == "__main__":
