@@ -2,8 +2,11 @@
 // physical terms in order. Included only by the backend files (engine_cpu.cpp, engine_cuda.cu).
 #pragma once
 
+#include <cstdio>
+
 #include <thrust/copy.h>
 #include <thrust/for_each.h>
+#include <thrust/host_vector.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/reduce.h>
 #include <thrust/transform_reduce.h>
@@ -525,16 +528,46 @@ class Simulation final : public Engine {
     const Real limit = thrust::reduce(Backend::policy(), step_limit_.begin(), step_limit_.begin() + moving_,
                                       std::numeric_limits<Real>::max(), MinimumOf<Real>());
     if (limit < Real(0))
-      throw SimulationFailure("the state holds NaN or infinity at t = " + std::to_string(time_) + " s, step " +
-                              std::to_string(steps_) + " (a rate of change is not finite)");
+      throw SimulationFailure("the state holds NaN or infinity at t = " + number(time_) + " s, step " +
+                              std::to_string(steps_) + ": a rate of change is not finite at " +
+                              describe_particle(first_particle_where([](Real l) { return l < Real(0); })));
     double dt = config_.cfl * double(limit);
     // No particle limits the step (no water, only dry soil): max_dt, or no step at all.
     if (limit >= std::numeric_limits<Real>::max()) dt = config_.max_dt > 0 ? config_.max_dt : 0.0;
     else if (config_.max_dt > 0 && dt > config_.max_dt) dt = config_.max_dt;
     if (dt < config_.min_dt)
-      throw SimulationFailure("time step " + std::to_string(dt) + " s fell below min_dt " +
-                              std::to_string(config_.min_dt) + " s at t = " + std::to_string(time_) + " s");
+      throw SimulationFailure("time step " + number(dt) + " s fell below min_dt " +
+                              number(config_.min_dt) + " s at t = " + number(time_) + " s, step " +
+                              std::to_string(steps_) + ", set by " +
+                              describe_particle(first_particle_where([limit](Real l) { return l == limit; })));
     return dt;
+  }
+
+  // The failure's diagnosis, read back to the host only when a run fails: the first moving
+  // particle whose step limit meets `condition`, or moving_ for none.
+  template <typename Condition>
+  std::size_t first_particle_where(Condition condition) const {
+    const thrust::host_vector<Real> limits(step_limit_.begin(), step_limit_.begin() + moving_);
+    for (std::size_t i = 0; i < limits.size(); ++i)
+      if (condition(limits[i])) return i;
+    return moving_;
+  }
+  static std::string number(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", v);
+    return text;
+  }
+  std::string describe_particle(std::size_t i) const {
+    if (i >= moving_) return "no particle found";
+    static const char* const kPhases[] = {"water", "soil", "boundary"};
+    const V x = position_[i], v = velocity_[i];
+    const Phase phase = phase_[i];
+    std::string where = "(";
+    for (int a = 0; a < Dim; ++a) where += (a ? ", " : "") + number(double(x[a]));
+    where += ") m";
+    return std::string(kPhases[std::size_t(phase) < 3 ? std::size_t(phase) : 2]) + " particle id " +
+           std::to_string(std::uint32_t(id_[i])) + " at " + where + ", speed " + number(double(v.norm())) +
+           " m/s, density " + number(double(water_density_[i])) + " kg/m³";
   }
 
   void save_step_start() {

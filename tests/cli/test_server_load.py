@@ -107,7 +107,9 @@ class Load(unittest.TestCase):
                 time.sleep(0.05)
             reason = broken.get().failure_reason
             self.assertRegex(reason, "NaN|infinity|time step")
-            self.assertRegex(reason, r"t = .* s")
+            self.assertRegex(reason, r"t = .* s")  # when
+            # The diagnosis: which particle, where.
+            self.assertRegex(reason, r"(water|soil) particle id \d+ at \([-0-9.e+]+, [-0-9.e+]+\) m")
             failures = [e for e in broken.events() if e.kind == "failure"]
             self.assertEqual(len(failures), 1)
             self.assertEqual(healthy.get().state, self.cascade_client.State.RUNNING)
