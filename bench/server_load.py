@@ -21,6 +21,10 @@ parser.add_argument("--case", default="tests/cli/fixtures/rain_column.yaml")
 parser.add_argument("--set", action="append", default=["end_time=1e7"], help="case overrides, as cascade run --set")
 parser.add_argument("--steps", type=int, default=4000, help="steps per throughput measurement")
 parser.add_argument("--changes", type=int, default=50, help="UpdateForcing requests timed")
+parser.add_argument("--query-interval", type=float, default=0.0,
+                    help="seconds between a query loop's queries (0: back to back)")
+parser.add_argument("--server-cpus", default="",
+                    help="run the server under taskset -c CPUS (and pin the clients elsewhere yourself)")
 args = parser.parse_args()
 build = pathlib.Path(args.build).resolve()
 sys.path[:0] = [str(build / "python"), str(pathlib.Path(__file__).resolve().parent.parent / "clients" / "python")]
@@ -42,6 +46,7 @@ def query(sim, stop, count):
     while not stop.is_set():
         sim.query("pore_pressure", "velocity", phase="soil")
         count[0] += 1
+        stop.wait(args.query_interval)
 
 
 def steps_per_second(sim, watchers, queriers):
@@ -87,8 +92,9 @@ def summary(values, unit):
 
 
 with tempfile.TemporaryDirectory() as data:
-    server = subprocess.Popen([str(build / "bin" / "cascade-server"), "--listen", "127.0.0.1:0", "--data-dir", data,
-                               "--threads", "1"], stderr=subprocess.PIPE, text=True)
+    pin = ["taskset", "-c", args.server_cpus] if args.server_cpus else []
+    server = subprocess.Popen(pin + [str(build / "bin" / "cascade-server"), "--listen", "127.0.0.1:0", "--data-dir",
+                                     data, "--threads", "1"], stderr=subprocess.PIPE, text=True)
     address = server.stderr.readline().split("listening on ")[1].split(",")[0]
     try:
         with cascade_client.Client(address) as client:
