@@ -12,8 +12,8 @@
 //    the largest crest of the near field; gauge 1 (x/h = 3) is the nearest gauge. The band is the
 //    relation's data scatter, ±30% (see docs/cases.md on the source of that figure).
 //  - No particle leaves the domain and the water and soil particle counts, hence their masses
-//    (every particle has the mass ρ_w0 dp², the phases differ in volume through the numerical
-//    density, Eq. 22), are those of the start.
+//    (a particle's mass is fixed), are those of the start. Open: about 17 particles cross the
+//    slope under the slide's front and leave the domain (docs/cases.md), so this part fails.
 #include <gtest/gtest.h>
 
 #include <algorithm>
