@@ -426,7 +426,9 @@ class Simulation final : public Engine {
       launch(SeepageDischarge<Real, Dim>{view(), soil_view(), sph_, surface_forcing()}, water, moving_);
       launch(SolidBoundarySeepage<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
     }
-    launch(WaterInteraction<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, water);
+    launch(WaterInteraction<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_,
+                                       has_soil_ ? raw(saturation_) : nullptr},
+           0, water);
     if (has_soil_)
       launch(SoilInteraction<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_, water_.rho0}, water,
              moving_);

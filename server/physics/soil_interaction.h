@@ -15,7 +15,9 @@
 // skeleton's ε̇_v. Each pair's pressure force and volume change are then the adjoint pair of the
 // water's own Eqs. 23a-b, so the pressure work across the interface is conserved; with σ'_i in the
 // pair and the water's velocity left out, a lateral mode of the interface grew from round-off at
-// a rate that rose with K_w and E (docs/physics.md, "Soil-water interface"). A rigid skeleton (Section 4.1) keeps
+// a rate that rose with K_w and E (docs/physics.md, "Soil-water interface"). The pair carries
+// compression only (interface_contact_pressure, water_momentum.h), and the water's volume change
+// enters the pore water in proportion to S_w,i, the wetted fraction of the pores. A rigid skeleton (Section 4.1) keeps
 // v = 0, its stress and porosity: only the pore water flows. The seepage divergence of Eq. 27a is
 // renormalised (below); the paper's standard operator misses the surface flux by half.
 #pragma once
@@ -87,7 +89,8 @@ struct SoilInteraction {
       const V v_ij = v_i - v_j;
       divergence += velocity_divergence_pair(volume_j, v_ij, grad_w);
       if (water) {
-        force += stress_force_pair<Real, Dim>(volume_j, -(pore_stress_i + p.pressure[j]) * M::Identity(), grad_w);
+        const Real contact_pressure = interface_contact_pressure(pore_stress_i + p.pressure[j]);
+        force += stress_force_pair<Real, Dim>(volume_j, -contact_pressure * M::Identity(), grad_w);
         interface_divergence -= volume_j * v_ij.dot(grad_w);
         continue;
       }
@@ -118,7 +121,10 @@ struct SoilInteraction {
     const double p_c = -double(p.pressure[i]);
     const Real capacity = Real(m.hydraulic.capacity(p_c, double(porosity), m.water_bulk_modulus));
     const bool prescribed = soil.free_surface[i] && soil.surface_state[i] != std::uint8_t(SurfaceState::flux);
-    const Real pore_volumetric = rigid ? Real(0) : volumetric + interface_divergence;
+    // The free water meets the pore water over the wetted fraction S_w of the pores (the adjoint
+    // of the S_w,i p_w,i that the water sees, water_interaction.h): a dry skeleton's residual
+    // water is neither squeezed nor sucked by the water moving past it.
+    const Real pore_volumetric = rigid ? Real(0) : volumetric + saturation * interface_divergence;
     const Real pore_rate = pore_water_density_rate(rho_w_i, capacity, seepage_divergence, saturation, pore_volumetric,
                                                    Real(m.delta) * sph.h * Real(m.pore_sound_speed), diffusion);
     p.water_density_rate[i] = prescribed ? Real(0) : pore_rate;

@@ -1,6 +1,14 @@
 // The water particle's right-hand side: one pass over its neighbours sums the numerical density
 // rate (Eq. 22), the water continuity with δ-SPH diffusion (Eq. 23a), the momentum with
 // artificial viscosity (Eq. 23b) and the per-particle time-step limit (Eq. 40a, 40b).
+//
+// A soil neighbour j enters Eq. 23b with the pressure its pore water exerts on the mixture,
+// S_w,j p_w,j (Bishop's pore stress of Eq. 7), not p_w,j: the soil particle's own pair with this
+// water particle is −(S_w,i p_w,i + p_j) (soil_interaction.h), so the two pair forces are equal
+// and opposite; and the suction of a dry skeleton (p_w = −10 kPa at S_w = 0.001) does not pull
+// free water into it (docs/physics.md, "Soil-water interface"). A saturated soil (S_w = 1) is
+// unchanged. The pair's pressure is held at zero or above: the contact between free water and the
+// skeleton carries no tension (interface_contact_pressure, water_momentum.h).
 #pragma once
 
 #include <cmath>
@@ -23,6 +31,7 @@ struct WaterInteraction {
   NeighbourListView<Real, Dim> neighbours;
   SphConstants<Real, Dim> sph;
   WaterConstants<Real> water;
+  const Real* saturation;  // S_w per particle (SoilView::saturation); nullptr in a case without soil
 
   CASCADE_HD void operator()(std::uint32_t i) const {
     if (p.phase[i] != Phase::water) return;
@@ -53,7 +62,12 @@ struct WaterInteraction {
       const Vec<Real, Dim> grad_w = sph.kernel.gradient_factor(std::sqrt(r2)) * x_ij;
       const Vec<Real, Dim> v_ij = v_i - gather(p.velocity, j);
       divergence += velocity_divergence_pair(volume_j, v_ij, grad_w);
-      const Vec<Real, Dim> pressure = pressure_force_pair(volume_j, p_i, p.pressure[j], grad_w);
+      const bool soil_j = saturation != nullptr && j >= grid.water_end && j < grid.moving_end;
+      const Real pore_fraction_j = soil_j ? saturation[j] : Real(1);
+      const Real pore_pressure_j = pore_fraction_j * p.pressure[j];
+      // A soil pair's p_i + S_w,j p_w,j is held at >= 0 (compression only), written as p_i + p_j'.
+      const Real seen_pressure_j = soil_j ? interface_contact_pressure(p_i + pore_pressure_j) - p_i : p.pressure[j];
+      const Vec<Real, Dim> pressure = pressure_force_pair(volume_j, p_i, seen_pressure_j, grad_w);
       const Real inv_r2_eta2 = Real(1) / (r2 + sph.eta2);
       const Real mu = viscosity_mu(sph.h, v_ij, x_ij, inv_r2_eta2);
       // |μ_ij| within the support, 0 for the list's skin entries (a mask, not a branch).

@@ -14,6 +14,17 @@ CASCADE_HD inline Vec<Real, Dim> pressure_force_pair(Real volume_j, Real p_i, Re
   return (-volume_j * (p_i + p_j)) * grad_w;
 }
 
+// The pressure of a pair across the soil-water interface, p_w + S_w p_w,s (free water and the
+// skeleton's pore water, docs/physics.md "Soil-water interface"), held at zero or above: the
+// contact carries compression only. Under tension air enters between grains and free water
+// (the interface meets the free surface wherever a slide enters water) and the two part; SPH would
+// otherwise pull them together with the tension of its own separating pairs (the tensile
+// instability), and a sliding dry mass dragged water particles into the air at tens of m/s.
+template <typename Real>
+CASCADE_HD inline Real interface_contact_pressure(Real pair_pressure) {
+  return pair_pressure > Real(0) ? pair_pressure : Real(0);
+}
+
 // μ_ij = h v_ij·x_ij / (|x_ij|² + η²) (Eq. 24c); also the pair term of the CFL limit (Eq. 40b).
 // Takes 1/(|x_ij|² + η²), which the δ-term of Eq. 24b shares.
 template <typename Real, int Dim>

@@ -31,7 +31,7 @@ TEST(RenormalisedGradient, ExactForLinearFieldEverywhereIncludingFreeSurface) {
   const Vec<double, 2> g(3.5, -9.81);  // kg/m⁴
   for (std::size_t i = 0; i < f.position.size(); ++i)
     raw(f.water_density)[i] = 1000.0 + g.dot(raw(f.position)[i]);
-  f.run(RenormalisedDensityGradient<double, 2>{f.view(), f.grid, f.neighbours->view(), f.sph, f.water});
+  f.run(RenormalisedDensityGradient<double, 2>{f.view(), f.grid, f.neighbours->view(), f.sph, f.water, nullptr});
   for (std::size_t i = 0; i < f.position.size(); ++i) {
     EXPECT_NEAR(raw(f.gradient)[i][0], g[0], 1e-8) << i;
     EXPECT_NEAR(raw(f.gradient)[i][1], g[1], 1e-8) << i;
@@ -44,8 +44,8 @@ TEST(DensityDiffusion, VanishesForLinearFieldAndDiffusesABump) {
   const Vec<double, 2> g(0.0, -9.81 * 1000.0 / (20.0 * 20.0));  // hydrostatic ρ_w gradient
   for (std::size_t i = 0; i < f.position.size(); ++i)
     raw(f.water_density)[i] = 1000.0 + g.dot(raw(f.position)[i]);
-  f.run(RenormalisedDensityGradient<double, 2>{f.view(), f.grid, f.neighbours->view(), f.sph, f.water});
-  f.run(WaterInteraction<double, 2>{f.view(), f.grid, f.neighbours->view(), f.sph, f.water});
+  f.run(RenormalisedDensityGradient<double, 2>{f.view(), f.grid, f.neighbours->view(), f.sph, f.water, nullptr});
+  f.run(WaterInteraction<double, 2>{f.view(), f.grid, f.neighbours->view(), f.sph, f.water, nullptr});
   // At rest the continuity rate is the δ-term alone. For a linear field its two parts cancel pair
   // by pair but for the η² of Eq. 24b: the residue is below η²/(r² + η²) < 3% (jitter 0.1 dp) of
   // the scale δ h c0 Σ_j V_j 2|F_ij| |G·x_ij| of the first part alone.
@@ -71,8 +71,8 @@ TEST(DensityDiffusion, VanishesForLinearFieldAndDiffusesABump) {
     if (d < best) best = d, centre = i;
   }
   raw(f.water_density)[centre] += 1.0;
-  f.run(RenormalisedDensityGradient<double, 2>{f.view(), f.grid, f.neighbours->view(), f.sph, f.water});
-  f.run(WaterInteraction<double, 2>{f.view(), f.grid, f.neighbours->view(), f.sph, f.water});
+  f.run(RenormalisedDensityGradient<double, 2>{f.view(), f.grid, f.neighbours->view(), f.sph, f.water, nullptr});
+  f.run(WaterInteraction<double, 2>{f.view(), f.grid, f.neighbours->view(), f.sph, f.water, nullptr});
   EXPECT_LT(raw(f.water_density_rate)[centre], -1.0);
   double total = 0;
   for (std::size_t i = 0; i < f.position.size(); ++i) total += raw(f.water_density_rate)[i] * f.sph.mass / raw(f.density)[i];
@@ -100,7 +100,7 @@ TEST(SolidBoundary, ExtrapolatesLinearFieldExactlyAndReversesVelocity) {
       raw(f.water_density)[i] = 1000.0 + g.dot(raw(f.position)[i]);
       raw(f.velocity)[i] = u;
     }
-  f.run(SolidBoundaryWater<double, 2>{f.view(), f.grid, f.sph, f.water});
+  f.run(SolidBoundaryWater<double, 2>{f.view(), f.grid, f.sph, f.water, nullptr});
   int checked = 0;
   for (std::size_t i = 0; i < f.position.size(); ++i) {
     if (raw(f.phase)[i] != Phase::boundary) continue;
@@ -124,7 +124,7 @@ TEST(SolidBoundary, ShepardFallbackWhenFewWaterNeighbours) {
   f.finish({-0.1, -0.1, 0}, {0.5, 0.3, 0});
   for (std::size_t i = 0; i < f.position.size(); ++i)
     if (raw(f.phase)[i] == Phase::water) raw(f.water_density)[i] = 1003.0;
-  f.run(SolidBoundaryWater<double, 2>{f.view(), f.grid, f.sph, f.water});
+  f.run(SolidBoundaryWater<double, 2>{f.view(), f.grid, f.sph, f.water, nullptr});
   for (std::size_t i = 0; i < f.position.size(); ++i) {
     if (raw(f.phase)[i] != Phase::boundary) continue;
     const double expected = raw(f.position)[i][0] < 0.1 ? 1003.0 : 1000.0;
