@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  g++ make cmake pkg-config git
+  g++ make cmake pkg-config git openssl
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libeigen3-dev libyaml-cpp-dev libhdf5-dev libthrust-dev
   libgtest-dev libgmock-dev libbenchmark-dev
