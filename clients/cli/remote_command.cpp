@@ -16,6 +16,7 @@
 
 #include "cascade/v1/simulation.grpc.pb.h"
 #include "server/io/hdf5_writer.h"
+#include "server/scenario/file_text.h"
 
 namespace cascade::cli {
 
@@ -128,12 +129,10 @@ class Remote {
     token_ = args.option("--token", env_token ? env_token : "");
     std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
     if (const std::string ca = args.option("--tls-ca"); !ca.empty()) {
-      std::ifstream in(ca);
-      if (!in) throw UsageError("cannot read --tls-ca " + ca);
-      std::ostringstream pem;
-      pem << in.rdbuf();
+      const std::optional<std::string> pem = file_text(ca);
+      if (!pem) throw UsageError("cannot read --tls-ca " + ca);
       grpc::SslCredentialsOptions ssl;
-      ssl.pem_root_certs = pem.str();
+      ssl.pem_root_certs = *pem;
       credentials = grpc::SslCredentials(ssl);
     }
     stub_ = v1::SimulationService::NewStub(grpc::CreateChannel(address, credentials));
@@ -196,11 +195,8 @@ int simulation_call(Remote& remote, Request request,
 }
 
 std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw UsageError("cannot read " + path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  if (auto text = file_text(path)) return *text;
+  throw UsageError("cannot read " + path);
 }
 
 int create(Remote& remote) {

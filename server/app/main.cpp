@@ -9,20 +9,16 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "server/app/server_options.h"
+#include "server/scenario/file_text.h"
 #include "server/service/simulation_service.h"
 
 namespace {
 
 std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  if (auto text = cascade::file_text(path)) return *text;
+  throw std::runtime_error("cannot read " + path.string());
 }
 
 std::shared_ptr<grpc::ServerCredentials> credentials(const cascade::app::ServerOptions& options) {

@@ -382,8 +382,6 @@ class Simulation final : public Engine {
       cells_.reorder(seepage_, start_position_);
       cells_.reorder(skeleton_acceleration_, start_position_);
       cells_.reorder(effective_stress_, start_stress_);
-    }
-    if (has_soil_) {
       // The dummies' soil side is recomputed at every evaluation, for the dummy block only (at
       // least one slot, so that a vectorised loop may load it unused).
       const std::size_t dummies = std::max<std::size_t>(cells_.active() - cells_.moving(), 1);

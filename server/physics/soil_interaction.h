@@ -17,9 +17,10 @@
 // pair and the water's velocity left out, a lateral mode of the interface grew from round-off at
 // a rate that rose with K_w and E (docs/physics.md, "Soil-water interface"). The pair carries
 // compression only (interface_contact_pressure, water_momentum.h), and the water's volume change
-// enters the pore water in proportion to S_w,i, the wetted fraction of the pores. A rigid skeleton (Section 4.1) keeps
-// v = 0, its stress and porosity: only the pore water flows. The seepage divergence of Eq. 27a is
-// renormalised (below); the paper's standard operator misses the surface flux by half.
+// enters the pore water in proportion to S_w,i, the wetted fraction of the pores. A rigid
+// skeleton (Section 4.1) keeps v = 0, its stress and porosity: only the pore water flows. The
+// seepage divergence of Eq. 27a is renormalised (below); the paper's standard operator misses the
+// surface flux by half.
 #pragma once
 
 #include <cmath>

@@ -5,12 +5,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <map>
-#include <sstream>
 
 #include "server/scenario/case_validation.h"
+#include "server/scenario/file_text.h"
 
 namespace cascade {
 
@@ -391,11 +390,9 @@ pb::ScenarioSpec load_case_text(const std::string& yaml_text, const std::vector<
 }
 
 pb::ScenarioSpec load_case_file(const std::string& path, const std::vector<CaseOverride>& overrides) {
-  std::ifstream in(path);
-  if (!in) throw CaseError("(file)", "cannot open the case file", -1, -1, path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  pb::ScenarioSpec spec = load_case_text(text.str(), overrides, path);
+  const std::optional<std::string> text = file_text(path);
+  if (!text) throw CaseError("(file)", "cannot open the case file", -1, -1, path);
+  pb::ScenarioSpec spec = load_case_text(*text, overrides, path);
   if (spec.name().empty()) {
     const auto slash = path.find_last_of('/');
     std::string stem = path.substr(slash == std::string::npos ? 0 : slash + 1);

@@ -3,9 +3,9 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
-#include <sstream>
 
 #include "server/scenario/forcing_message.h"
+#include "server/scenario/file_text.h"
 #include "server/service/checkpoint_store.h"
 #include "server/service/session.h"
 
@@ -14,11 +14,8 @@ namespace cascade::service {
 namespace {
 
 std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  if (auto text = file_text(path)) return *text;
+  throw std::runtime_error("cannot read " + path.string());
 }
 
 // The journal of the run so far replaces journal.jsonl; the file replaced (the commands after the
