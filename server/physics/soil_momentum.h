@@ -53,10 +53,15 @@ CASCADE_HD inline Real mixture_density(const SoilMaterial& m, Real porosity, Rea
   return (Real(1) - porosity) * Real(m.grain_density) + saturation * porosity * rho_w0;
 }
 
-// Eq. 29: c_s0 = sqrt((4G/3 + K)/ρ_s0), with K and G of the elastic part of the soil model.
-CASCADE_HD inline double soil_sound_speed(const SoilMaterial& m) {
+// The skeleton's P-wave modulus K + 4G/3, with K and G of the elastic part of the soil model.
+CASCADE_HD inline double skeleton_p_wave_modulus(const SoilMaterial& m) {
   const auto e = m.mechanical.elastic();
-  return std::sqrt((4.0 * e.shear_modulus / 3.0 + e.bulk_modulus) / m.grain_density);
+  return 4.0 * e.shear_modulus / 3.0 + e.bulk_modulus;
+}
+
+// Eq. 29: c_s0 = sqrt((4G/3 + K)/ρ_s0).
+CASCADE_HD inline double soil_sound_speed(const SoilMaterial& m) {
+  return std::sqrt(skeleton_p_wave_modulus(m) / m.grain_density);
 }
 
 // The P-wave speed of the soil with its pore water, for the step limit of Eq. 40b:
@@ -68,9 +73,8 @@ CASCADE_HD inline double soil_sound_speed(const SoilMaterial& m) {
 // at the Eq. 29 step, and with real water (2.2 GPa) the wave is some 20 times faster.
 CASCADE_HD inline double undrained_sound_speed(const SoilMaterial& m, double saturation, double capacity,
                                                double mixture_density) {
-  const auto e = m.mechanical.elastic();
   const double pore_stiffness = capacity > 0 ? saturation * saturation * m.water_bulk_modulus / capacity : 0.0;
-  return std::sqrt((4.0 * e.shear_modulus / 3.0 + e.bulk_modulus + pore_stiffness) / mixture_density);
+  return std::sqrt((skeleton_p_wave_modulus(m) + pore_stiffness) / mixture_density);
 }
 
 // One neighbour's V_j (σ_i + σ_j)·∇_i W_ij of Eq. 26b, with the in-plane total stresses; the sum is
