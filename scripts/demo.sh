@@ -1,29 +1,46 @@
 #!/usr/bin/env bash
-# The main job of the README, for now: the 2D dam break of cases/dam_break_2d.yaml run headless,
-# then a PNG of its surge front and residual column against Martin & Moyce (1952).
-# Installs the Debian packages, builds the `cascade` executable of the `release` preset, runs the
-# case into out/dam_break_2d/ and plots out/dam_break_2d/surge_front.png.
+# The README's main job: the rainfall → landslide → wave cascade of cases/cascade_demo_2d.yaml, run
+# by cascade-server and steered live by a Python client (scripts/cascade_demo.py): rain on the
+# slope, the rainfall raised part-way, the landslide, the wave at the far bank. Outputs in
+# out/cascade_demo_2d/: PNG snapshots at the key moments, PNG plots of pore pressure, soil speed and
+# wave elevation against time, the probes, summary.json; the summary (events and their times) is
+# printed at the end. Installs the Debian packages and builds what it needs; no GPU, no display.
 #
-# usage: bash scripts/demo.sh [cascade run options, e.g. --until 0.1 --set dp=0.0073 --threads 2]
+# usage: [CASCADE_THREADS=N] bash scripts/demo.sh [cascade_demo.py options, e.g. --raise-at 5 --raise-factor 3
+#                             --set dp=0.08]
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-out=out/dam_break_2d
+out=out/cascade_demo_2d
 bash scripts/install-deps.sh
 cmake --preset release
-cmake --build --preset release -j"$(nproc)" --target cascade
+cmake --build --preset release -j"$(nproc)" --target cascade-server cascade_python_stubs
 
 # A fresh directory, so that no file of an earlier run is mistaken for this one's.
 rm -rf "$out"
-build/release/bin/cascade run cases/dam_break_2d.yaml --out "$out" "$@"
-/usr/bin/python3 scripts/plot_dam_break.py "$out"
+mkdir -p "$out"
+# Port 0: the server picks a free port and says which on its first line.
+build/release/bin/cascade-server --listen 127.0.0.1:0 --data-dir "$out/server" --threads "${CASCADE_THREADS:-$(nproc)}" \
+  2> "$out/server.log" &
+server=$!
+trap 'kill -TERM "$server" 2>/dev/null || true' EXIT
+address=""
+for _ in $(seq 1 300); do
+  address=$(sed -n 's/^cascade-server: listening on \([^,]*\),.*/\1/p' "$out/server.log")
+  [ -n "$address" ] && break
+  kill -0 "$server" 2>/dev/null || { cat "$out/server.log"; exit 1; }
+  sleep 0.1
+done
+[ -n "$address" ] || { echo "cascade-server did not start:"; cat "$out/server.log"; exit 1; }
+echo "cascade-server (pid $server) listening on $address; its log: $out/server.log"
 
-cat <<MSG
+status=0
+PYTHONPATH=build/release/python:clients/python /usr/bin/python3 scripts/cascade_demo.py \
+  --server "$address" --case cases/cascade_demo_2d.yaml --out "$out" "$@" || status=$?
 
-Outputs of the 2D dam break are in $out/:
-  fields.h5, fields.xdmf   particle fields per output time (open fields.xdmf in ParaView)
-  probes.csv               time, front_x, column_height, p_right_wall
-  run.json                 run summary (status, steps, wall time, particle counts)
-  surge_front.png          surge front and column height against Martin & Moyce (1952)
-See README.md ("Results") and docs/output.md for how to read them.
-MSG
+# SIGTERM: the server checkpoints what still runs and exits 0 (docs/api.md).
+kill -TERM "$server"
+wait "$server" || { echo "cascade-server exited $?"; status=1; }
+trap - EXIT
+echo "cascade-server stopped"
+exit "$status"

@@ -10,7 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libgles-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
   libvtk9-dev
-  python3 python3-numpy python3-h5py python3-matplotlib
+  python3 python3-numpy python3-h5py python3-matplotlib python3-yaml
   python3-grpcio python3-protobuf python3-grpc-tools
 )
 
