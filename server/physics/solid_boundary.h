@@ -1,9 +1,11 @@
 // Solid boundaries: dummy particles whose values come from their ghost nodes (Section 3.3.1).
-// A field at the ghost node g is interpolated from the water with first-order consistency
-// (Eqs. 30, 31), extrapolated to the dummy particle b with a first-order Taylor series (Eq. 32),
-// or taken from the Shepard interpolant (Eq. 33) when |det A_g| < 10⁻³. Velocities use the Shepard
-// interpolant (Eq. 34) and the dummy particle takes the opposite of the ghost's (Eq. 35a): no slip
-// and no penetration.
+// A field at the ghost node g is interpolated with first-order consistency (Eqs. 30, 31), or
+// taken from the Shepard interpolant (Eq. 33) when |det A_g| < 10⁻³. The soil's fields are
+// extrapolated to the dummy particle b with a first-order Taylor series (Eq. 32,
+// solid_boundary_soil.h); the water's pressure is carried from g to b with the hydrostatic
+// gradient of the wall's momentum balance instead (SolidBoundaryWater, below). Velocities use the
+// Shepard interpolant (Eq. 34) and the dummy particle takes the opposite of the ghost's (Eq. 35a):
+// no slip and no penetration.
 #pragma once
 
 #include <cmath>
@@ -73,9 +75,9 @@ struct GhostInterpolation {
   CASCADE_HD Vec<Real, Dim> ghost_velocity() const { return velocity / shepard; }
 };
 
-// Water side of the solid boundary: ρ_w and p_w of each dummy particle from the water around its
-// ghost node (Eqs. 30-33b), velocity from Eqs. 34a, 35a. A dummy particle with no water near its
-// ghost node rests at ρ_w0.
+// Water side of the solid boundary: p_w of each dummy particle from the water around its ghost
+// node (Eqs. 30, 31, 33b) and the hydrostatic gradient, ρ_w from p_w (Eq. 6), velocity from
+// Eqs. 34a, 35a. A dummy particle with no water near its ghost node rests at ρ_w0.
 //
 // At the half step a dummy particle whose ghost had no water within the search radius (2h and
 // the neighbour-list skin) at the start of the step is skipped: the water has moved less than the
@@ -112,9 +114,18 @@ struct SolidBoundaryWater {
       p.velocity[b] = Vec<Real, Dim>::Zero();
       return;
     }
-    const Real rho_w = ghost.extrapolate(p.position[b], x_g)(0);
-    p.water_density[b] = rho_w;
-    p.pressure[b] = water.pressure(rho_w);
+    // The ghost node's pressure (Eq. 6 of the value of Eq. 30, or of Eq. 33b's Shepard value),
+    // carried to the dummy with the pressure gradient that the momentum balance gives at a fixed
+    // wall, ∇p·(x_b − x_g) = ρ_w0 g·(x_b − x_g): the hydrostatic term of Adami, Hu & Adams (2012),
+    // Eq. 27, with the wall's acceleration a_w = 0. Eq. 32b's gradient, interpolated from the
+    // water near the ghost, is not used: where a ghost node lies in a sliding soil mass it sees a
+    // thin film of water, and the extrapolation over |x_b − x_g| (up to 5 dp) gave dummies −34 kPa
+    // beside water at a few kPa (docs/physics.md, "Solid boundary"). Exact for a hydrostatic
+    // field, as Eq. 32b is.
+    const Real p_g = water.pressure(ghost.at_ghost()(0));
+    const Real p_b = p_g + water.rho0 * sph.gravity.dot(p.position[b] - x_g);
+    p.water_density[b] = water.density(p_b);
+    p.pressure[b] = p_b;
     p.velocity[b] = -ghost.ghost_velocity();
   }
 };

@@ -55,7 +55,11 @@ void check_hydrostatic(const std::string& case_file, const std::vector<std::stri
   double worst = 0;
   for (const auto& [layer, sums] : layers) {
     const double z = sums.second / counts[layer];
-    if (z > surface - 3.5 * dp) continue;  // the top three layers
+    // The top three layers, whose centres lie near 0.5, 1.5 and 2.5 dp below the surface: the cut
+    // lies half-way to the fourth (3.5 dp), not on it, where a layer's mean z a fraction of a
+    // millimetre high dropped it from the check (0.3 mm in the 3D tank, docs/physics.md,
+    // "Verification").
+    if (z > surface - 3.0 * dp) continue;
     const double mean_p = sums.first / counts[layer];
     const double expected = rho0 * g * (surface - z);
     const double error = std::fabs(mean_p - expected) / expected;

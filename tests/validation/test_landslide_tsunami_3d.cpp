@@ -1,7 +1,6 @@
 // The 3D landslide-tsunami flume (cases/landslide_tsunami_3d.yaml, Section 4.4 after Viroulet et
-// al. 2013, extruded over a periodic strip): it loads, builds its particles and runs. The 2D case's
-// wave validation is not in the suite yet: it fails on particles crossing the slope under the
-// slide (docs/cases.md, "Landslide tsunami").
+// al. 2013, extruded over a periodic strip): it loads, builds its particles and runs. The wave
+// itself is validated in 2D (test_landslide_tsunami_2d.cpp, docs/cases.md "Landslide tsunami").
 #include <gtest/gtest.h>
 
 #include <cmath>
