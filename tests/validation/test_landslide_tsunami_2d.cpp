@@ -31,9 +31,14 @@
 
 #include "server/io/probe_sampler.h"
 #include "tests/validation/case_run.h"
+#include "tests/validation/slide_counts.h"
 
 namespace cascade {
 namespace {
+
+using testing::count;
+using testing::PhaseCounts;
+using testing::soil_centroid;
 
 constexpr double kG = 9.81, kDepth = 0.148, kSlopeAngle = 45.0 * M_PI / 180.0;
 constexpr double kLeg = 0.11, kSoilDensity = 2500.0, kWaterDensity = 1000.0;
@@ -54,25 +59,6 @@ Crest leading_crest(const std::vector<double>& t, const std::vector<double>& eta
   return c;
 }
 
-struct PhaseCounts {
-  std::size_t water = 0, soil = 0, outside = 0;
-};
-
-PhaseCounts count(const FieldFrame& f, const v1::ScenarioSpec& spec) {
-  PhaseCounts n;
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    const double x = f.position[3 * i], z = f.position[3 * i + 2];
-    const int vertical = spec.dimensions() - 1;  // the domain's z index
-    const bool inside = x >= spec.domain().min(0) && x <= spec.domain().max(0) &&
-                        z >= spec.domain().min(vertical) && z <= spec.domain().max(vertical) && std::isfinite(x) &&
-                        std::isfinite(z);
-    if (f.phase[i] == std::uint8_t(Phase::water)) ++n.water;
-    if (f.phase[i] == std::uint8_t(Phase::soil)) ++n.soil;
-    if (f.phase[i] != std::uint8_t(Phase::boundary) && !inside) ++n.outside;
-  }
-  return n;
-}
-
 // How far a point lies inside the solids under the water (m, > 0 inside): the floor z < 0 and
 // the slope below the line z = h0 − x (the case's `slope` polygon, from x = −0.35 to the toe).
 double depth_in_wall(double x, double z) {
@@ -87,19 +73,6 @@ double deepest_in_wall(const FieldFrame& f) {
     if (f.phase[i] != std::uint8_t(Phase::boundary))
       deepest = std::max(deepest, depth_in_wall(f.position[3 * i], f.position[3 * i + 2]));
   return deepest;
-}
-
-// The soil's centroid height and the speed of its centroid (all particles have one mass).
-void soil_centroid(const FieldFrame& f, double* z, double* speed) {
-  const auto* v = f.find("velocity");
-  double zc = 0, vx = 0, vz = 0;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    if (f.phase[i] != std::uint8_t(Phase::soil)) continue;
-    zc += f.position[3 * i + 2], vx += v->values[3 * i], vz += v->values[3 * i + 2], ++n;
-  }
-  *z = zc / double(n);
-  *speed = std::hypot(vx, vz) / double(n);
 }
 
 TEST(LandslideTsunami2d, WaveReachesGaugesInOrderAndGauge1MatchesHellerHager) {
@@ -173,7 +146,6 @@ TEST(LandslideTsunami2d, WaveReachesGaugesInOrderAndGauge1MatchesHellerHager) {
   EXPECT_EQ(n1.outside, 0u);
   EXPECT_LT(deepest, wall_thickness) << "a particle crossed the slope's or the floor's dummy layers";
 }
-
 
 }  // namespace
 }  // namespace cascade

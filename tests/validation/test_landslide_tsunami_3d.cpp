@@ -6,41 +6,14 @@
 #include <cmath>
 
 #include "tests/validation/case_run.h"
+#include "tests/validation/slide_counts.h"
 
 namespace cascade {
 namespace {
 
-struct PhaseCounts {
-  std::size_t water = 0, soil = 0, outside = 0;
-};
-
-PhaseCounts count(const FieldFrame& f, const v1::ScenarioSpec& spec) {
-  PhaseCounts n;
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    const double x = f.position[3 * i], z = f.position[3 * i + 2];
-    const int vertical = spec.dimensions() - 1;  // the domain's z index
-    const bool inside = x >= spec.domain().min(0) && x <= spec.domain().max(0) &&
-                        z >= spec.domain().min(vertical) && z <= spec.domain().max(vertical) && std::isfinite(x) &&
-                        std::isfinite(z);
-    if (f.phase[i] == std::uint8_t(Phase::water)) ++n.water;
-    if (f.phase[i] == std::uint8_t(Phase::soil)) ++n.soil;
-    if (f.phase[i] != std::uint8_t(Phase::boundary) && !inside) ++n.outside;
-  }
-  return n;
-}
-
-// The soil's centroid height and the speed of its centroid (all particles have one mass).
-void soil_centroid(const FieldFrame& f, double* z, double* speed) {
-  const auto* v = f.find("velocity");
-  double zc = 0, vx = 0, vz = 0;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    if (f.phase[i] != std::uint8_t(Phase::soil)) continue;
-    zc += f.position[3 * i + 2], vx += v->values[3 * i], vz += v->values[3 * i + 2], ++n;
-  }
-  *z = zc / double(n);
-  *speed = std::hypot(vx, vz) / double(n);
-}
+using testing::count;
+using testing::PhaseCounts;
+using testing::soil_centroid;
 
 // The 3D flume (cases/landslide_tsunami_3d.yaml) loads, builds its particles and runs: the slide
 // starts moving and nothing is lost in 20 steps.

@@ -1,0 +1,48 @@
+// What the landslide tests count on a frame: the water and soil particles, those outside the
+// case's domain, and the soil's centroid with its speed (every particle has one mass, so counts
+// are masses and means are centroids).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "cascade/v1/scenario.pb.h"
+#include "server/core/field_frame.h"
+#include "server/core/types.h"
+
+namespace cascade::testing {
+
+struct PhaseCounts {
+  std::size_t water = 0, soil = 0, outside = 0;
+};
+
+inline PhaseCounts count(const FieldFrame& f, const v1::ScenarioSpec& spec) {
+  PhaseCounts n;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const double x = f.position[3 * i], z = f.position[3 * i + 2];
+    const int vertical = spec.dimensions() - 1;  // the domain's z index
+    const bool inside = x >= spec.domain().min(0) && x <= spec.domain().max(0) &&
+                        z >= spec.domain().min(vertical) && z <= spec.domain().max(vertical) && std::isfinite(x) &&
+                        std::isfinite(z);
+    if (f.phase[i] == std::uint8_t(Phase::water)) ++n.water;
+    if (f.phase[i] == std::uint8_t(Phase::soil)) ++n.soil;
+    if (f.phase[i] != std::uint8_t(Phase::boundary) && !inside) ++n.outside;
+  }
+  return n;
+}
+
+// The soil's centroid height and the speed of its centroid.
+inline void soil_centroid(const FieldFrame& f, double* z, double* speed) {
+  const auto* v = f.find("velocity");
+  double zc = 0, vx = 0, vz = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    if (f.phase[i] != std::uint8_t(Phase::soil)) continue;
+    zc += f.position[3 * i + 2], vx += v->values[3 * i], vz += v->values[3 * i + 2], ++n;
+  }
+  *z = zc / double(n);
+  *speed = std::hypot(vx, vz) / double(n);
+}
+
+}  // namespace cascade::testing
