@@ -104,13 +104,13 @@ def run(args):
     plot(out, names, times, values, events, change)
     summary = {
         "case": args.case,
-        "simulated_time_s": final.time,
-        "steps": final.step,
+        "simulated_time_s": final.status.time,
+        "steps": final.status.step,
         "wall_seconds": wall,
         "particles": final.particle_count,
         # Each particle's mass is ρ_w0 dp^d, fixed: a phase's mass is its particle count.
         "phase_particles": {"start": counts_start, "end": counts_end},
-        "particle_steps_per_second": final.particle_count * final.step / wall,
+        "particle_steps_per_second": final.particle_count * final.status.step / wall,
         "rainfall_change": None if change is None else {
             "from_m_per_s": base_rain, "to_m_per_s": base_rain * args.raise_factor,
             "time_s": change.effective_time, "step": change.effective_step},
@@ -122,7 +122,7 @@ def run(args):
         raise SystemExit(f"particles were lost: {counts_start} at the start, {counts_end} at the end")
     missing = wanted - {e.kind for e in events}
     if missing:
-        raise SystemExit(f"events that did not happen by t = {final.time:.1f} s: {', '.join(sorted(missing))}")
+        raise SystemExit(f"events that did not happen by t = {final.status.time:.1f} s: {', '.join(sorted(missing))}")
 
 
 def phase_counts(sim):
@@ -179,12 +179,13 @@ def print_summary(summary, out):
     print(f"\nCascade demo: {summary['simulated_time_s']:.1f} s simulated in {summary['wall_seconds']:.0f} s "
           f"of wall time ({summary['steps']} steps, {summary['particles']} particles, "
           f"{summary['particle_steps_per_second']:.3g} particle-steps/s)")
+    lines = [(e["time_s"], f"{e['kind']}: {e['message']}") for e in summary["events"]]
     change = summary["rainfall_change"]
     if change:
-        print(f"  t = {change['time_s']:7.2f} s  rainfall raised {change['from_m_per_s']:g} -> "
-              f"{change['to_m_per_s']:g} m/s (step {change['step']})")
-    for e in summary["events"]:
-        print(f"  t = {e['time_s']:7.2f} s  {e['kind']}: {e['message']}")
+        lines.append((change["time_s"], f"rainfall raised {change['from_m_per_s']:g} -> "
+                                        f"{change['to_m_per_s']:g} m/s (step {change['step']})"))
+    for t, line in sorted(lines):
+        print(f"  t = {t:7.2f} s  {line}")
     counts = summary["phase_particles"]
     kept = "kept" if counts["start"] == counts["end"] else "NOT kept"
     print(f"  mass of each phase {kept}: water {counts['start']['water']} -> {counts['end']['water']}, "
