@@ -32,6 +32,7 @@
 #include "server/scenario/particle_builder.h"
 #include "server/scenario/rain_series.h"
 #include "server/scenario/soil_setup.h"
+#include "server/scenario/stage_setup.h"
 
 namespace cascade::cli {
 
@@ -105,16 +106,24 @@ const char* precision_name(Precision p) { return p == Precision::single_precisio
 class Outputs {
  public:
   Outputs(const v1::ScenarioSpec& spec, const std::filesystem::path& dir, double h, double mass)
-      : sampler_(spec, h, mass),
-        frame_interval_(spec.output().interval()),
-        probe_interval_(spec.output().probe_interval() > 0 ? spec.output().probe_interval()
-                                                          : spec.output().interval() / 10.0),
+      : spec_(spec),
+        sampler_(spec, h, mass),
+        frame_interval_(stage_frame_interval(spec, 0)),
+        probe_interval_(stage_probe_interval(spec, 0)),
         snapshots_(spec, dir / "snapshots"),
         events_(spec, h, sampler_.names()) {
     std::filesystem::create_directories(dir);
     if (!spec.output().has_hdf5() || spec.output().hdf5()) hdf5_ = std::make_unique<Hdf5FieldWriter>(dir / "fields.h5");
     if (spec.output().vtk()) vtk_ = std::make_unique<VtkSeriesWriter>(dir / "vtk");
     probes_ = std::make_unique<ProbeCsvWriter>(dir / "probes.csv", sampler_.names());
+  }
+
+  // A new stage: its own intervals, counted from now.
+  void enter_stage(int stage, double t) {
+    frame_interval_ = stage_frame_interval(spec_, stage);
+    probe_interval_ = stage_probe_interval(spec_, stage);
+    next_frame_ = t + frame_interval_;
+    next_probe_ = t + probe_interval_;
   }
 
   // `force` (the start and the end of the run) writes each output unless it already holds this time.
@@ -145,6 +154,7 @@ class Outputs {
   }
 
  private:
+  const v1::ScenarioSpec& spec_;
   ProbeSampler sampler_;
   double frame_interval_, probe_interval_;
   double next_frame_ = 0, next_probe_ = 0, last_frame_time_ = -1, last_probe_time_ = -1;
@@ -257,7 +267,7 @@ int run_command(const std::vector<std::string>& args) {
   int exit_code = 0;
   try {
     const EngineConfig config = engine_config(spec, particles, options.precision);
-    engine = make_engine(config, particles);
+    engine = make_case_engine(spec, config, particles, &make_engine);
     Outputs outputs(spec, options.out_dir, config.h, config.water_density * std::pow(config.dp, config.dimensions));
     std::fprintf(stderr,
                  "cascade run: %s, %zu particles (%zu water, %zu soil, %zu boundary), dp = %g m, h = %g m, "
@@ -284,6 +294,18 @@ int run_command(const std::vector<std::string>& args) {
         summary.events.push_back({engine->time(), engine->step_count(), e.kind, e.message});
       }
     };
+    // The stage switches since the last step: run.json's events, and every output at the switch.
+    const auto record_stages = [&]() {
+      for (const StageChange& c : engine->take_stage_changes()) {
+        const std::string message = (c.from < 0 ? std::string("start: ") : c.from_name + " -> ") + c.to_name + ": " + c.reason;
+        std::fprintf(stderr, "\ncascade run: t = %g s, step %llu: stage_changed: %s\n", c.time,
+                     static_cast<unsigned long long>(c.step), message.c_str());
+        summary.events.push_back({c.time, c.step, "stage_changed", message});
+        outputs.enter_stage(c.to, c.time);
+        record(outputs.observe(*engine, true));
+      }
+    };
+    record_stages();
     record(outputs.observe(*engine, true));
     std::size_t lost = 0;
     while (engine->time() < end_time * (1 - 1e-12)) {
@@ -295,6 +317,7 @@ int run_command(const std::vector<std::string>& args) {
       const bool series_applies = !replay || replay->apply(*engine, config.dimensions, summary);
       if (series_applies) apply_rain_series(spec, *engine, summary);
       engine->step();
+      record_stages();
       record(outputs.observe(*engine, false));
       progress.update(engine->time(), engine->step_count(), engine->last_dt());
       if (engine->lost_particles() != lost) {

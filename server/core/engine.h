@@ -57,6 +57,15 @@ struct EngineConfig {
   Device device = Device::cpu;
 };
 
+// A run's switch from one stage to the next (ScenarioSpec.stages, server/solver/staged_engine.h).
+struct StageChange {
+  double time = 0;           // simulated time of the switch (s)
+  std::uint64_t step = 0;    // the step count there
+  int from = -1, to = 0;     // indices into the case's stages (-1: the start of the run)
+  std::string from_name, to_name;
+  std::string reason;        // what ended the stage, and its figures
+};
+
 // Why a run cannot go on (time step collapsed, non-finite state).
 class SimulationFailure : public std::runtime_error {
  public:
@@ -87,6 +96,15 @@ class Engine {
   // throws std::invalid_argument when the state belongs to another kind of engine or particle set.
   virtual EngineState state() const = 0;
   virtual void restore(const EngineState& state) = 0;
+
+  // Stages (server/solver/staged_engine.h): the index of the one running (into the case's stages;
+  // 0 for a run of one stage), the switches since the last call, and the operator's hand-over to
+  // the next stage at the next step boundary (std::invalid_argument when there is none).
+  virtual int stage() const { return 0; }
+  virtual std::vector<StageChange> take_stage_changes() { return {}; }
+  virtual void advance_stage(const std::string& caller) {
+    throw std::invalid_argument("the run has no further stage (requested by " + caller + ")");
+  }
 };
 
 std::unique_ptr<Engine> make_engine(const EngineConfig& config, const HostParticles& particles);

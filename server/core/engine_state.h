@@ -27,6 +27,9 @@ struct EngineState {
   std::map<std::string, std::vector<std::uint32_t>> integers;
   // The positions that displacements are measured from, by id (particles × 3).
   std::vector<double> displacement_reference;
+  // The stage running (Engine::stage) and named numbers that a stage carries over a checkpoint.
+  int stage = 0;
+  std::map<std::string, double> stage_values;
 };
 
 }  // namespace cascade

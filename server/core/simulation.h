@@ -319,6 +319,9 @@ class Simulation final : public Engine {
     FieldFrame::RealField u{"displacement", "m", 3, std::vector<double>(3 * n)};
     FieldFrame::RealField total{"stress", "Pa", 6, std::vector<double>(6 * n)};
     FieldFrame::RealField effective{"effective_stress", "Pa", 6, std::vector<double>(6 * n)};
+    FieldFrame::RealField yield{"yield_ratio", "1", 1, std::vector<double>(n)};
+    std::vector<std::uint8_t> material(n);
+    thrust::copy(soil_material_.begin(), soil_material_.end(), material.begin());
     f.free_surface.assign(n, 0);
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t i = id[k];
@@ -337,8 +340,10 @@ class Simulation final : public Engine {
         effective.values[6 * i + c] = double(stress[k](c));
         total.values[6 * i + c] = double(stress[k](c)) - (c < 3 ? sat.values[i] * pore.values[i] : 0.0);
       }
+      yield.values[i] = config_.soils[material[k]].mechanical.yield_ratio(tensor_of(Voigt<double>(stress[k].template cast<double>())),
+                                                                         -pore.values[i], kappa.values[i]);
     }
-    for (auto* field : {&pore, &sat, &phi, &kappa, &q, &u, &total, &effective}) f.fields.push_back(std::move(*field));
+    for (auto* field : {&pore, &sat, &phi, &kappa, &q, &u, &total, &effective, &yield}) f.fields.push_back(std::move(*field));
   }
 
   // Runs f on particles [begin, end): the moving particles are [0, moving_), the dummy particles

@@ -94,6 +94,20 @@ HydraulicForcing read_forcing(hid_t file) {
   return f;
 }
 
+// The names of a group's members.
+std::vector<std::string> dataset_names(hid_t group) {
+  H5G_info_t info;
+  check(H5Gget_info(group, &info), "list a group");
+  std::vector<std::string> names;
+  for (hsize_t k = 0; k < info.nlinks; ++k) {
+    char name[256];
+    if (H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name, H5P_DEFAULT) < 0)
+      throw std::runtime_error("cannot list a group");
+    names.emplace_back(name);
+  }
+  return names;
+}
+
 // The root's attributes, which a listing reads alone.
 void write_summary(hid_t file, const Checkpoint& c) {
   write_string_attribute(file, "format", kFormat);
@@ -149,6 +163,11 @@ void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
         write_array(engine, name.c_str(), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, values);
       for (const auto& [name, values] : c.engine.integers)
         write_array(engine, name.c_str(), H5T_STD_U32LE, H5T_NATIVE_UINT32, values);
+      // The stage and the numbers it carries (EngineState::stage, stage_values).
+      Handle stage(H5Gcreate2(file, "stage", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /stage");
+      write_u64(stage, "index", std::uint64_t(c.engine.stage));
+      for (const auto& [name, value] : c.engine.stage_values)
+        write_array(stage, name.c_str(), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, std::vector<double>{value});
       check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush");
     }
     std::filesystem::rename(partial, path);
@@ -180,17 +199,22 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
     s.single_precision = read_string(file, "precision") == "float";
     s.forcing = read_forcing(file);
     s.displacement_reference = read_array<double>(file, "displacement_reference", H5T_NATIVE_DOUBLE);
+    {
+      Handle stage(H5Gopen2(file, "stage", H5P_DEFAULT), H5Gclose, "open /stage");
+      s.stage = int(read_u64(stage, "index"));
+      for (const std::string& name : dataset_names(stage)) {
+        const auto value = read_array<double>(stage, name.c_str(), H5T_NATIVE_DOUBLE);
+        if (value.size() != 1) throw std::runtime_error("/stage/" + name + " must hold one value");
+        s.stage_values[name] = value[0];
+      }
+    }
     Handle engine(H5Gopen2(file, "engine", H5P_DEFAULT), H5Gclose, "open /engine");
-    H5G_info_t info;
-    check(H5Gget_info(engine, &info), "list /engine");
-    for (hsize_t k = 0; k < info.nlinks; ++k) {
-      char name[256];
-      if (H5Lget_name_by_idx(engine, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name, H5P_DEFAULT) < 0)
-        throw std::runtime_error("cannot list /engine");
-      Handle dataset(H5Dopen2(engine, name, H5P_DEFAULT), H5Dclose, std::string("open /engine/") + name);
-      Handle type(H5Dget_type(dataset), H5Tclose, std::string("get type of /engine/") + name);
-      if (H5Tget_class(type) == H5T_INTEGER) s.integers[name] = read_array<std::uint32_t>(engine, name, H5T_NATIVE_UINT32);
-      else s.reals[name] = read_array<double>(engine, name, H5T_NATIVE_DOUBLE);
+    for (const std::string& name : dataset_names(engine)) {
+      Handle dataset(H5Dopen2(engine, name.c_str(), H5P_DEFAULT), H5Dclose, "open /engine/" + name);
+      Handle type(H5Dget_type(dataset), H5Tclose, "get type of /engine/" + name);
+      if (H5Tget_class(type) == H5T_INTEGER)
+        s.integers[name] = read_array<std::uint32_t>(engine, name.c_str(), H5T_NATIVE_UINT32);
+      else s.reals[name] = read_array<double>(engine, name.c_str(), H5T_NATIVE_DOUBLE);
     }
     return c;
   });

@@ -10,6 +10,7 @@
 #include "server/scenario/engine_setup.h"
 #include "server/scenario/forcing_message.h"
 #include "server/scenario/rain_series.h"
+#include "server/scenario/stage_setup.h"
 
 namespace cascade::service {
 
@@ -279,7 +280,7 @@ void Session::initialise() {
     entry.set_caller(config_.caller);
     entry.set_case_name(config_.spec.name());
     journal(std::move(entry));
-    engine_ = config_.make_engine(config_.engine, config_.particles);
+    engine_ = make_case_engine(config_.spec, config_.engine, config_.particles, config_.make_engine);
     probes_ = std::make_unique<ProbeSampler>(config_.spec, config_.engine.h,
                                              config_.engine.water_density * std::pow(config_.engine.dp, config_.engine.dimensions));
     cascade_events_ = std::make_unique<CascadeEventDetector>(config_.spec, config_.engine.h, probes_->names());
@@ -287,6 +288,7 @@ void Session::initialise() {
     if (steps > 0) add_event("initialisation", std::to_string(steps) + " steps; the clock restarts at t = 0", "server");
     rate_wall_ = wall_now();
     rate_step_ = engine_->step_count();
+    report_stage_changes();
     sample_outputs(true);
     add_event("state", "created", config_.caller);
   } catch (const std::exception& e) {
@@ -470,6 +472,7 @@ void Session::advance() {
     stop_running(v1::Simulation::FAILED, e.what());
     return;
   }
+  report_stage_changes();
   if (engine_->lost_particles() != lost_particles_) {
     add_event("particles_lost",
               std::to_string(engine_->lost_particles() - lost_particles_) + " particles left the domain (" +
@@ -533,10 +536,24 @@ void Session::stop_running(v1::Simulation::State state, const std::string& reaso
   }
 }
 
+// The engine's stage switches (stage_setup.h): to the events, the watch streams and the journal;
+// the probes then sample at the new stage's interval, from now.
+void Session::report_stage_changes() {
+  for (const StageChange& c : engine_->take_stage_changes()) {
+    const std::string message = (c.from < 0 ? std::string("start: ") : c.from_name + " -> ") + c.to_name + ": " + c.reason;
+    add_event("stage_changed", message, "solver");
+    v1::JournalEntry entry;
+    entry.set_caller("solver");
+    entry.set_command("stage_changed");
+    entry.set_detail(message);
+    journal(std::move(entry));
+    next_probe_time_ = engine_->time();
+  }
+}
+
 void Session::sample_outputs(bool force) {
   const double t = engine_->time();
-  const double probe_interval = config_.spec.output().probe_interval() > 0 ? config_.spec.output().probe_interval()
-                                                                           : config_.spec.output().interval() / 10.0;
+  const double probe_interval = stage_probe_interval(config_.spec, engine_->stage());
   const bool probe_due = t >= next_probe_time_ - 1e-12 * probe_interval;
   const bool energy_due = wall_now() - last_energy_wall_ >= kEnergySampleSeconds;
   if (!force && !probe_due && !energy_due) return;

@@ -126,6 +126,7 @@ class Session {
   void advance();  // one step while running, with everything that follows it
   void reach_targets();
   void stop_running(v1::Simulation::State state, const std::string& reason);
+  void report_stage_changes();
   void sample_outputs(bool force);
   void publish_status();
   void feed_taps();

@@ -6,6 +6,7 @@
 
 #include "server/scenario/forcing_message.h"
 #include "server/scenario/file_text.h"
+#include "server/scenario/stage_setup.h"
 #include "server/service/checkpoint_store.h"
 #include "server/service/session.h"
 
@@ -65,7 +66,7 @@ void Session::restore() {
     // A steered intensity replaced the case's rain series for the rest of the run (advance()).
     for (const auto& entry : read_journal(journal_path))
       for (const auto& field : entry.update_mask()) intensity_steered_ |= field == "rainfall.intensity";
-    engine_ = config_.make_engine(config_.engine, config_.particles);
+    engine_ = make_case_engine(config_.spec, config_.engine, config_.particles, config_.make_engine);
     engine_->restore(source.checkpoint.engine);
     probes_ = std::make_unique<ProbeSampler>(config_.spec, config_.engine.h,
                                              config_.engine.water_density * std::pow(config_.engine.dp, config_.engine.dimensions));

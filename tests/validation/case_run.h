@@ -1,4 +1,5 @@
-// Runs a case file through the same path as `cascade run` (loader → particle builder → engine) for
+// Runs a case file through the same path as `cascade run` (loader → particle builder → engine, with
+// the case's stages) for
 // validation tests, without writing files. A case's initialisation stage runs in the constructor,
 // as the runner runs it before t = 0.
 #pragma once
@@ -11,6 +12,7 @@
 #include "server/scenario/case_loader.h"
 #include "server/scenario/engine_setup.h"
 #include "server/scenario/particle_builder.h"
+#include "server/scenario/stage_setup.h"
 
 namespace cascade::testing {
 
@@ -27,7 +29,7 @@ struct CaseRun {
     spec = load_case_file(std::string(CASCADE_SOURCE_DIR) + "/cases/" + case_file, parsed);
     set = build_particle_set(spec);
     config = engine_config(spec, set.particles, precision);
-    engine = make_engine(config, set.particles);
+    engine = make_case_engine(spec, config, set.particles, &make_engine);
     initialisation_steps = run_initialisation(spec, *engine);
   }
   std::uint64_t initialisation_steps = 0;  // the case's initialisation stage, run by the constructor

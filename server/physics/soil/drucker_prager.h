@@ -66,6 +66,19 @@ CASCADE_HD inline Real drucker_prager_yield(const Mat<Real, 3>& stress, const St
   return strength.alpha_phi * first_invariant(stress) + std::sqrt(second_deviatoric_invariant(stress)) - strength.k_c;
 }
 
+// How close a stress is to yield: sqrt(J2) over the shear strength k_c − α_φ I1 at the same
+// mean stress, 1 on the cone of Eq. 10a, below 1 inside it. Where the strength vanishes (at or
+// beyond the apex, a tensile mean stress) it is kYieldRatioAtApex.
+constexpr double kYieldRatioAtApex = 10.0;
+template <typename Real>
+CASCADE_HD inline Real yield_ratio(const Mat<Real, 3>& stress, const Strength<Real>& strength) {
+  const Real shear_strength = strength.k_c - strength.alpha_phi * first_invariant(stress);
+  const Real shear = std::sqrt(second_deviatoric_invariant(stress));
+  if (!(shear_strength > Real(0))) return Real(kYieldRatioAtApex);
+  const Real ratio = shear / shear_strength;
+  return ratio < Real(kYieldRatioAtApex) ? ratio : Real(kYieldRatioAtApex);
+}
+
 // Eq. 10b: g = α_ψ I1 + sqrt(J2).
 template <typename Real>
 CASCADE_HD inline Real drucker_prager_potential(const Mat<Real, 3>& stress, Real alpha_psi) {

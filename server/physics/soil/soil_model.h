@@ -62,6 +62,13 @@ struct SoilModel {
     return {elastic().update(stress, strain_increment, spin_increment), kappa, PlasticRegime::elastic};
   }
 
+  // yield_ratio (drucker_prager.h) at suction p_c [Pa] and κ; 0 for a linear-elastic soil, which
+  // never yields.
+  CASCADE_HD Real yield_ratio(const Mat<Real, 3>& stress, Real suction, Real kappa) const {
+    if (kind != Kind::drucker_prager) return Real(0);
+    return cascade::yield_ratio(stress, drucker_prager().strength(kappa, suction));
+  }
+
   // Host only. Empty when the parameters are usable, else one message that names the first bad
   // parameter. The strength parameters are checked only for kind drucker_prager.
   std::string validate() const {

@@ -1,0 +1,134 @@
+#include "server/solver/staged_engine.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+namespace cascade {
+
+namespace {
+
+std::string text(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", v);
+  return buffer;
+}
+
+// The pore-water stage's numbers that a checkpoint carries (EngineState::stage_values).
+constexpr const char* kNextDt = "pore_water.next_dt";
+
+}  // namespace
+
+StagedEngine::StagedEngine(std::unique_ptr<Engine> dynamic, const EngineConfig& config, std::vector<StagePlan> plan,
+                           std::vector<double> forcing_times)
+    : dynamic_(std::move(dynamic)), config_(config), plan_(std::move(plan)), forcing_times_(std::move(forcing_times)) {
+  if (plan_.empty()) throw std::invalid_argument("a staged run needs at least one stage");
+  for (const StagePlan& stage : plan_)
+    if (stage.kind == StageKind::geostatic)
+      throw std::invalid_argument("the geostatic stage is not available in this build");
+  enter(0, "the run starts");
+}
+
+void StagedEngine::enter(int stage, const std::string& reason) {
+  const StagePlan& next = plan_.at(std::size_t(stage));
+  StageChange change;
+  change.time = dynamic_->time();
+  change.step = dynamic_->step_count();
+  change.from = started_ ? current_ : -1;
+  started_ = true;
+  change.from_name = change.from < 0 ? "" : plan_[std::size_t(current_)].name;
+  change.to = stage;
+  change.to_name = next.name;
+  change.reason = reason;
+  if (pore_water_) {
+    const WaterBalance& b = pore_water_->balance();
+    change.reason += "; the stage's water balance (m^" + std::to_string(config_.dimensions) + "): rain " +
+                     text(b.rain) + ", infiltration " + text(b.infiltration) + ", runoff " + text(b.runoff) +
+                     ", exfiltration " + text(b.exfiltration) + ", walls " + text(b.walls) + ", free water " +
+                     text(b.free_water) + ", storage change " + text(b.storage) + ", error " + text(b.error());
+  }
+  changes_.push_back(change);
+  current_ = stage;
+  pore_water_.reset();
+  if (next.kind == StageKind::pore_water) {
+    pore_water_state_ = dynamic_->state();
+    pore_water_ = std::make_unique<ImplicitPoreWater>(config_, pore_water_state_, next.pore_water);
+  }
+}
+
+void StagedEngine::step() {
+  const StagePlan& stage = plan_[std::size_t(current_)];
+  if (stage.kind == StageKind::pore_water) pore_water_step();
+  else dynamic_->step();
+  if (std::size_t(current_) + 1 >= plan_.size()) return;  // the last stage runs to the end
+  if (const auto reason = stage_end_reached()) enter(current_ + 1, *reason);
+}
+
+void StagedEngine::pore_water_step() {
+  const StagePlan& stage = plan_[std::size_t(current_)];
+  double limit = next_forcing_time() - dynamic_->time();
+  if (stage.end_time) limit = std::min(limit, *stage.end_time - dynamic_->time());
+  // A step never shorter than min_dt because of a target just ahead: it then reaches past it.
+  limit = std::max(limit, stage.pore_water.min_dt);
+  pore_water_state_.forcing = dynamic_->forcing();  // as steered since the last step
+  pore_water_->step(pore_water_state_, pore_water_state_.forcing, limit);
+  dynamic_->restore(pore_water_state_);
+}
+
+std::optional<std::string> StagedEngine::stage_end_reached() {
+  const StagePlan& stage = plan_[std::size_t(current_)];
+  if (stage.end_time && dynamic_->time() >= *stage.end_time * (1 - 1e-12))
+    return "the stage's end time " + text(*stage.end_time) + " s";
+  if (stage.kind == StageKind::pore_water && stage.yield_band.active()) {
+    const std::string reached =
+        yield_band_reached(measure_yield_band(dynamic_->frame(), stage.yield_band, config_.dp), stage.yield_band);
+    if (!reached.empty()) return reached;
+  }
+  return std::nullopt;
+}
+
+double StagedEngine::next_forcing_time() const {
+  const double now = dynamic_->time();
+  for (const double t : forcing_times_)
+    if (t > now * (1 + 1e-12) + 1e-12) return t;
+  return std::numeric_limits<double>::infinity();
+}
+
+std::vector<StageChange> StagedEngine::take_stage_changes() {
+  std::vector<StageChange> taken;
+  taken.swap(changes_);
+  return taken;
+}
+
+void StagedEngine::advance_stage(const std::string& caller) {
+  if (std::size_t(current_) + 1 >= plan_.size())
+    throw std::invalid_argument("the " + plan_[std::size_t(current_)].name + " stage is the run's last");
+  // The caller's command is applied at a step boundary: the next step is the next stage's.
+  enter(current_ + 1, "requested by " + caller);
+}
+
+EngineState StagedEngine::state() const {
+  EngineState s = dynamic_->state();
+  s.stage = current_;
+  if (pore_water_) s.stage_values[kNextDt] = pore_water_->next_dt();
+  return s;
+}
+
+void StagedEngine::restore(const EngineState& s) {
+  if (s.stage < 0 || std::size_t(s.stage) >= plan_.size())
+    throw std::invalid_argument("the state is of stage " + std::to_string(s.stage) + "; the case has " +
+                                std::to_string(plan_.size()));
+  dynamic_->restore(s);
+  current_ = s.stage;
+  changes_.clear();  // the state's history replaces this engine's
+  pore_water_.reset();
+  if (plan_[std::size_t(current_)].kind == StageKind::pore_water) {
+    pore_water_state_ = dynamic_->state();
+    pore_water_ = std::make_unique<ImplicitPoreWater>(config_, pore_water_state_, plan_[std::size_t(current_)].pore_water);
+    const auto dt = s.stage_values.find(kNextDt);
+    if (dt != s.stage_values.end()) pore_water_->set_next_dt(dt->second);
+  }
+}
+
+}  // namespace cascade

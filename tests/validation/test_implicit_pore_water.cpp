@@ -1,0 +1,232 @@
+// The implicit pore-water stage (server/quasistatic/implicit_pore_water.h) at real permeability
+// over days, against independent references:
+//  - Srivastava & Yeh's (1991) transient solution for Gardner's soil above a water table
+//    (tests/reference/gardner_analytic.h), two parameter sets with K_sat <= 1e-5 m/s over 4 and
+//    10 days: the pressure head within 2% of the profile's range at every output time, the flux
+//    into the water table within 5% of the rain;
+//  - a van Genuchten soil at K_sat = 1e-5 m/s under 24 h of rain, against the fine-grid
+//    finite-volume Richards solver of tests/reference/richards_1d.h, within 2% of the range;
+//  - the water balance of each: rain in = storage change + outflow within 0.1% of the rain.
+// Each asserts that the profile changed by much more than its tolerance.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "server/solver/staged_engine.h"
+#include "tests/reference/gardner_analytic.h"
+#include "tests/reference/richards_1d.h"
+#include "tests/validation/case_run.h"
+
+namespace cascade {
+namespace {
+
+constexpr double kRho = 1000.0, kG = 9.81, kWidth = 0.2;
+
+// Layer-averaged pore pressure of the soil (layers of particles at equal z).
+std::map<double, double> layer_pressures(const FieldFrame& f) {
+  std::map<double, std::pair<double, int>> sums;
+  const auto* p = f.find("pore_pressure");
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (f.phase[i] == std::uint8_t(Phase::soil)) {
+      auto& s = sums[std::round(f.position[3 * i + 2] * 1e6) / 1e6];
+      s.first += p->values[i];
+      s.second += 1;
+    }
+  std::map<double, double> out;
+  for (const auto& [z, s] : sums) out[z] = s.first / s.second;
+  return out;
+}
+
+const StagedEngine& staged(const testing::CaseRun& run) {
+  const auto* s = dynamic_cast<const StagedEngine*>(run.engine.get());
+  if (!s) throw std::logic_error("the case has no stages");
+  return *s;
+}
+
+// Starts the soil at pore pressure p(z).
+template <typename Pressure>
+void set_initial_pressure(testing::CaseRun& run, Pressure pressure) {
+  EngineState s = run.engine->state();
+  const SoilMaterial& m = run.config.soils.at(0);
+  auto& p = s.reals.at("pressure");
+  auto& rho = s.reals.at("water_density");
+  auto& saturation = s.reals.at("saturation");
+  const auto& phase = s.integers.at("phase");
+  const auto& x = s.reals.at("position");
+  for (std::size_t k = 0; k < s.particles; ++k) {
+    if (Phase(phase[k]) != Phase::soil) continue;
+    p[k] = pressure(x[2 * k + 1]);
+    rho[k] = kRho * (1 + p[k] / m.water_bulk_modulus);
+    saturation[k] = m.hydraulic.saturation(-p[k]);
+  }
+  run.engine->restore(s);
+}
+
+struct ProfileCheck {
+  double worst = 0;       // the worst |Δψ| over the layers (m)
+  double worst_z = 0;     // where (m)
+  double range = 0;       // the reference profile's range max ψ − min ψ (m)
+  double change = 0;      // the largest change of the reference from its start (m)
+  std::size_t layers = 0;
+};
+
+template <typename Reference>
+ProfileCheck compare_heads(const FieldFrame& frame, Reference reference_head, double t) {
+  ProfileCheck c;
+  double lo = 1e300, hi = -1e300;
+  for (const auto& [z, p] : layer_pressures(frame)) {
+    const double expected = reference_head(z, t);
+    lo = std::min(lo, expected), hi = std::max(hi, expected);
+    if (std::fabs(p / (kRho * kG) - expected) > c.worst) c.worst = std::fabs(p / (kRho * kG) - expected), c.worst_z = z;
+    if (std::getenv("CASCADE_PROFILE")) std::printf("  z %.3f psi %.5f ref %.5f\n", z, p / (kRho * kG), expected);
+    c.change = std::max(c.change, std::fabs(expected - reference_head(z, 0.0)));
+    ++c.layers;
+  }
+  c.range = hi - lo;
+  return c;
+}
+
+struct SrivastavaYehCase {
+  std::string name;
+  std::vector<std::string> overrides;
+  reference::GardnerColumn column;
+  std::vector<double> days;
+};
+
+void check_srivastava_yeh(const SrivastavaYehCase& c) {
+  testing::CaseRun run("water_table_column_1d.yaml", c.overrides);
+  const reference::GardnerColumnSolution solution(c.column);
+  set_initial_pressure(run, [&](double z) { return kRho * kG * solution.pressure_head(z, 0.0); });
+  const double rain = c.column.flux_in;
+  std::size_t checked = 0;
+  for (const double day : c.days) {
+    const double target = day * 86400.0;
+    double walls_before = 0, step_time = 0;
+    while (run.engine->time() < target * (1 - 1e-12)) {
+      walls_before = staged(run).water_balance().walls;
+      const double t0 = run.engine->time();
+      run.engine->step();
+      step_time = run.engine->time() - t0;
+    }
+    const double t = run.engine->time();
+    const ProfileCheck heads =
+        compare_heads(run.engine->frame(), [&](double z, double time) { return solution.pressure_head(z, time); }, t);
+    // The flux into the water table over the last step, per unit area (downward positive),
+    // against the solution at the step's end (backward Euler).
+    const double flux = -(staged(run).water_balance().walls - walls_before) / step_time / kWidth;
+    const double expected_flux = solution.downward_flux(0.0, t);
+    const WaterBalance b = staged(run).water_balance();
+    std::printf("%s: t = %.3f day (%llu steps, last %.0f s): worst |psi - psi_SY| = %.2f mm at z = %.2f m (%.2f%% of the range "
+                "%.3f m; the profile changed by up to %.3f m over %zu layers); flux into the water table %.4g m/s "
+                "(Srivastava & Yeh %.4g, rain %.4g, off by %.2f%% of the rain); balance: rain %.6g, storage %.6g, "
+                "walls %.6g, error %.2e of the rain\n",
+                c.name.c_str(), t / 86400.0, (unsigned long long)run.engine->step_count(), step_time, 1e3 * heads.worst, heads.worst_z,
+                100 * heads.worst / heads.range, heads.range, heads.change, heads.layers, flux, expected_flux, rain,
+                100 * std::fabs(flux - expected_flux) / rain, b.rain, b.storage, b.walls, b.error() / b.rain);
+    EXPECT_GT(heads.layers, 100u);
+    EXPECT_LT(heads.worst, 0.02 * heads.range) << c.name << " at " << day << " day";
+    EXPECT_GT(heads.change, 10 * 0.02 * heads.range) << c.name << ": the profile must change by far more than the tolerance";
+    EXPECT_NEAR(flux, expected_flux, 0.05 * rain) << c.name << " at " << day << " day";
+    EXPECT_NEAR(b.rain, rain * kWidth * t, 1e-9 * b.rain) << "the rain that reached the soil";
+    EXPECT_LT(std::fabs(b.error()), 1e-3 * b.rain) << "water balance";
+    EXPECT_NEAR(b.storage, b.infiltration - b.exfiltration + b.walls + b.free_water, 1e-3 * b.rain);
+    ++checked;
+  }
+  EXPECT_EQ(checked, c.days.size());
+}
+
+// Section 4.1's soil (α = 2 1/m, θ_s 0.4, θ_r 0.092) with K_sat = 1e-5 m/s, 3 m above the water
+// table, at rest; rain of half K_sat for 4 days.
+TEST(ImplicitPoreWater, SrivastavaYehHomogeneousFromRest) {
+  reference::GardnerColumn column;
+  column.soil = {2.0, 0.4, 0.4 * 0.23, 1e-5};
+  column.height = 3.0;
+  column.base = reference::ColumnBase::water_table;
+  column.base_pressure_head = 0.0;
+  column.initial_flux_in = 0.0;
+  column.flux_in = 5e-6;
+  check_srivastava_yeh({"K_sat 1e-5 m/s, q 0 -> 0.5 K_sat", {}, column, {0.25, 0.5, 1.0, 2.0, 4.0}});
+}
+
+// A second soil: α = 1 1/m, θ_s = 0.35, θ_r = 0.035, K_sat = 2e-6 m/s (0.17 m/day), 2 m above the
+// water table, from the steady state of rain of 0.1 K_sat to 0.8 K_sat, over 10 days.
+TEST(ImplicitPoreWater, SrivastavaYehHomogeneousFluxStep) {
+  reference::GardnerColumn column;
+  column.soil = {1.0, 0.35, 0.035, 2e-6};
+  column.height = 2.0;
+  column.base = reference::ColumnBase::water_table;
+  column.base_pressure_head = 0.0;
+  column.initial_flux_in = 2e-7;
+  column.flux_in = 1.6e-6;
+  check_srivastava_yeh({"K_sat 2e-6 m/s, q 0.1 -> 0.8 K_sat",
+                        {"materials[0].soil.porosity=0.35", "materials[0].soil.saturated_conductivity=2e-6",
+                         "materials[0].soil.hydraulic={gardner: {s_min: 0.1, s_max: 1.0, alpha: 1.0}}",
+                         "bodies[1].shape.box.max=[0.2, 2.0]", "domain.max=[0.2, 2.1]", "probes=[]",
+                         "hydraulics.rainfall_intensity=1.6e-6", "end_time=864000"},
+                        column,
+                        {0.5, 1.0, 2.0, 5.0, 10.0}});
+}
+
+// Van Genuchten–Mualem (Table 3's sand: λ 0.5, p_ref 4350 Pa... as the cascade demo's soil) at
+// K_sat = 1e-5 m/s, 24 h of rain of 0.8 K_sat on a column 2 m above the water table, against the
+// finite-volume Richards solution with the same curves and the same compressible pore water.
+TEST(ImplicitPoreWater, VanGenuchtenAgainstRichards) {
+  testing::CaseRun run("water_table_column_1d.yaml",
+                       {"materials[0].soil.hydraulic={van_genuchten: {s_min: 0.1, s_max: 1.0, lambda: 0.5, p_ref: 4350}}",
+                        "bodies[1].shape.box.max=[0.2, 2.0]", "domain.max=[0.2, 2.1]", "probes=[]",
+                        "hydraulics.rainfall_intensity=8e-6", "end_time=86400", "stages[0].pore_water.max_dt=10"});
+  const SoilMaterial soil = run.config.soils.at(0);
+  reference::RichardsSoil r;
+  r.porosity = 0.4;
+  r.saturated_conductivity = soil.saturated_conductivity;
+  const auto model = soil.hydraulic;
+  r.saturation = [model](double p_c) { return model.saturation(p_c); };
+  r.relative_conductivity = [model](double p_c) { return model.relative_conductivity(p_c); };
+  r.water_density = kRho;
+  r.gravity = kG;
+  r.water_bulk_modulus = soil.water_bulk_modulus;
+  reference::RichardsOptions options;
+  options.cells = 800;
+  options.max_time_step = 60.0;
+  reference::Richards1d richards(r, 2.0, [](double z) { return -kRho * kG * z; },
+                                 reference::TopBoundary::constant_flux(8e-6), reference::BottomBoundary::fixed_pressure(0.0), options);
+  const auto initial = richards.snapshot();
+  std::size_t checked = 0;
+  for (const double hour : {3.0, 6.0, 12.0, 24.0}) {
+    run.run_until(hour * 3600.0);
+    richards.advance_to(run.engine->time());
+    const auto reference = richards.snapshot();
+    const auto head = [&](const auto& snapshot, double z) {
+      const auto& zs = snapshot.z;
+      const auto& ps = snapshot.pore_pressure;
+      if (z <= zs.front()) return ps.front() / (kRho * kG);
+      if (z >= zs.back()) return ps.back() / (kRho * kG);
+      const auto k = std::size_t(std::upper_bound(zs.begin(), zs.end(), z) - zs.begin());
+      const double w = (z - zs[k - 1]) / (zs[k] - zs[k - 1]);
+      return ((1 - w) * ps[k - 1] + w * ps[k]) / (kRho * kG);
+    };
+    const ProfileCheck heads = compare_heads(
+        run.engine->frame(), [&](double z, double t) { return t == 0.0 ? head(initial, z) : head(reference, z); },
+        run.engine->time());
+    const WaterBalance b = staged(run).water_balance();
+    std::printf("van Genuchten, t = %.1f h (%llu steps): worst |psi - psi_Richards| = %.2f mm (%.2f%% of the range "
+                "%.3f m; the profile changed by up to %.3f m); balance error %.2e of the rain\n",
+                run.engine->time() / 3600.0, (unsigned long long)run.engine->step_count(), 1e3 * heads.worst,
+                100 * heads.worst / heads.range, heads.range, heads.change, b.error() / b.rain);
+    EXPECT_GT(heads.layers, 90u);
+    EXPECT_LT(heads.worst, 0.02 * heads.range) << "at " << hour << " h";
+    EXPECT_GT(heads.change, 10 * 0.02 * heads.range);
+    EXPECT_LT(std::fabs(b.error()), 1e-3 * b.rain) << "water balance";
+    ++checked;
+  }
+  EXPECT_EQ(checked, 4u);
+}
+
+}  // namespace
+}  // namespace cascade
