@@ -43,14 +43,17 @@
 //            A = S(m_1, L1),  B = [C(m_1, L1) + ½ S(m_1, L1)]/p_2 − ½ A;
 //   eigenvalue equation F(σ) = X'(L) + ½ X(L) = 0,
 //            X'(L) = −A m_2 S(m_2, L2) + B C(m_2, L2).
-// (This is, after multiplying out, the characteristic equation that Bandai & Ghezzehei code for
-// the paper with μ_1 = λ, μ_2 = (βλ² + (β − 1)/4)^{1/2}, β = ρ_2/p_2 — the roots agree; see the
-// unit tests for the homogeneous limit.)
+// Where λ = √m_1 and μ = √m_2 are real, the roots are those of the two-layer characteristic
+// equation as Bandai & Ghezzehei code it for the paper ("(21a)" in their notebook),
+//   [sin λL1 + 2λ cos λL1][sin μL2 + 2μ cos μL2] − (1 + 4μ²)(K_s2/K_s1) sin λL1 sin μL2 = 0,
+// μ² = βλ² + (β − 1)/4, β = ρ_2/p_2 (checked in the unit tests to 1e-9 relative); where m_1 or m_2
+// is negative (their other cases) S and C above continue it through sinh and cosh.
 // Coefficients: the initial v_0 = e^{z/2}(k_A − k_B) satisfies v_0'' = v_0/4, v_0(0) = 0, the
 // interface conditions and v_0' + v_0/2 = e^{L/2}(q_A − q_B)/p_2 at L; Green's identity then gives
 //   ∫ρ X_n v_0 dz = e^{L/2} (q_A − q_B) X_n(L)/σ_n,
 // and with N_n = ∫ρ X_n² dz (closed form: ∫S² = (x − S C)/(2m), ∫C² = (x + S C)/2, ∫S C = S²/2)
-//   k(z, T) = k_B(z) + e^{−z/2} Σ_n a_n X_n(z) e^{−σ_n T},   a_n = e^{L/2} (q_A − q_B) X_n(L)/(σ_n N_n),
+//   k(z, T) = k_B(z) + e^{−z/2} Σ_n a_n X_n(z) e^{−σ_n T},
+//   a_n = e^{L/2} (q_A − q_B) X_n(L)/(σ_n N_n),
 //   q(z, T) = q_B + p_i e^{−z/2} Σ_n a_n (X_n' + ½ X_n) e^{−σ_n T}.
 // For equal layers (p_2 = ρ_2 = 1), σ = λ² + ¼ and this is gardner_analytic.h's series term by
 // term (tan λL + 2λ = 0, a_n = 4 (q_A − q_B) e^{L/2} sin λL/(1 + L/2 + 2Lλ²)).
@@ -62,8 +65,9 @@
 // Σ a_n² N_n = ∫ρ v_0² dz.
 // Truncation: the series stops at the first n for which the bound b_n = |a_n|max|X_n| e^{−σ_n T}
 // (or with max|X_n' + X_n/2| for the flux; a_n bounded with max|X_n| in place of X_n(L)), times
-// the geometric tail factor 1 + 1/(1 − e^{−(σ_n − σ_{n−1}) T}), is below series_tolerance (absolute,
-// on k, whose scale is 1; on q/K_s1 for the flux). At T = 0 the initial state is returned exactly.
+// the geometric tail factor 1 + 1/(1 − e^{−(σ_n − σ_{n−1}) T}), is below series_tolerance
+// (absolute, on k, whose scale is 1; on q/K_s1 for the flux). At T = 0 the initial state is
+// returned exactly.
 //
 // Sources: R. Srivastava and T.-C. J. Yeh (1991), "Analytical solutions for one-dimensional,
 // transient infiltration toward the water table in homogeneous and layered soils", Water Resources
@@ -72,7 +76,7 @@
 // is re-derived, not transcribed). The scaling z = α_1 z*, T = α_1 K_s1 t*/Δθ_1, β and the shape of
 // the two-layer characteristic equation were compared with T. Bandai and T. A. Ghezzehei,
 // DD-PINNs-RRE, analytical_solutions/Srivastava1991_heterogeneous.ipynb
-// (github.com/ToshiyukiBandai/DD-PINNs-RRE, doi:10.5281/zenodo.6030635), which was read, not copied.
+// (github.com/ToshiyukiBandai/DD-PINNs-RRE, doi:10.5281/zenodo.6030635), read, not copied.
 // Gardner's model: W. R. Gardner (1958), Soil Science 85(4):228–232.
 #pragma once
 
@@ -152,7 +156,8 @@ class LayeredGardnerSolution {
     k0_ = std::exp(alpha_ * c_.base_pressure_head);
     q_a_ = c_.initial_flux_in / c_.lower.saturated_conductivity;
     q_b_ = c_.flux_in / c_.lower.saturated_conductivity;
-    time_scale_ = (c_.lower.theta_s - c_.lower.theta_r) / (alpha_ * c_.lower.saturated_conductivity);
+    time_scale_ =
+        (c_.lower.theta_s - c_.lower.theta_r) / (alpha_ * c_.lower.saturated_conductivity);
     const double phase = l1_ + l2_ * std::sqrt(rho2_ / p2_);
     scan_step_ = kPi / phase / 64.0;
   }
