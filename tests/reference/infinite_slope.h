@@ -15,6 +15,8 @@
 // "suction stress characteristic curve", σ' = (σ − u_a) − σ^s, σ^s = −S_e (u_a − u_w)):
 //   ψ < 0:  σ^s = S_e(ψ) u_w = S_e(ψ) γ_w ψ  (negative: suction adds to the normal stress),
 //   ψ >= 0: σ^s = u_w = γ_w ψ                (Terzaghi, σ' = σ − u_w).
+// (With σ' = σ − σ^s the saturated limit is σ^s = +u_w; "σ^s = −u_w" belongs to the opposite sign
+// convention σ' = σ + σ^s. Either way suction raises σ' and positive pressure lowers it.)
 // Mohr–Coulomb, τ_f = c' + σ' tan φ', gives
 //   FS(H) = τ_f/τ = tan φ'/tan β + c'/(W sin β cos β) − σ^s tan φ'/(W sin β cos β),
 // which for a constant γ (W = γH; 1/(sin β cos β) = 2/sin 2β = tan β + cot β) is Lu & Godt's
@@ -23,8 +25,12 @@
 // conditions", Water Resources Research 44, W11404, doi:10.1029/2008WR006976; the paper's text was
 // not available here, so the expression is the one re-derived above, which agrees with the form
 // quoted in the brief; no equation number is cited). For a transient ψ(d, t) the same expression
-// holds at each depth and time with the local σ^s (the slip plane's stresses are those of the
-// slice above it, quasi-static; inertia and seepage forces are in u_w through ψ).
+// holds at each depth and time with the local σ^s (quasi-static: the slip plane carries the weight
+// of the slice above it; the flow enters only through u_w). γ(d) does not change with time here:
+// the weight gained by wetting is left out (pass the wettest γ(d) for a conservative bound).
+// Mapping a vertical infiltration column (gardner_analytic.h, gardner_layered.h, z up from the
+// water table, height L) onto the slope, ψ(d, t) = ψ_column(L − d, t), assumes vertical flow in
+// the unsaturated zone, the usual simplification for rain on a hillslope.
 // Effective saturation S_e(ψ) for ψ < 0: van Genuchten (1980), S_e = [1 + (α|ψ|)^n]^{−(1−1/n)},
 // the form of Lu, Godt & Wu (2010); or Gardner's exponential of Srivastava & Yeh (1991),
 // S_e = (θ − θ_r)/(θ_s − θ_r) = e^{αψ}. Both give S_e = 1 at ψ = 0, so σ^s is continuous there.
@@ -82,9 +88,9 @@ struct SlopeCriticalState {
   double factor_of_safety = 0;
 };
 struct SlopeSearchOptions {
-  int depth_samples = 200;     // equal steps on [d_min, d_max], then golden-section refinement
-  int time_samples = 100;      // equal steps on [t_start, t_end] to bracket the first crossing
-  double time_tolerance = 1.0; // s, width of the final bisection bracket
+  int depth_samples = 200;      // equal steps on [d_min, d_max], then golden-section refinement
+  int time_samples = 100;       // equal steps on [t_start, t_end] to bracket the first crossing
+  double time_tolerance = 1.0;  // s, width of the final bisection bracket
 };
 
 class InfiniteSlopeStability {
