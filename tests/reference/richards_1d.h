@@ -32,6 +32,14 @@
 // p_min; back to the flux when the soil can take (or deliver) it again. Bottom — no flow or a fixed
 // pressure. A Dirichlet value sits on the boundary face, half a cell from the nearest centre.
 //
+// Layered columns: a second constructor takes a list of layers (RichardsLayer, bottom to top, each
+// with its own soil); a cell takes the soil of the layer holding its centre. Within a soil the
+// face conductivity is the arithmetic mean of the two cells'; on a face between two different soils
+// it is the harmonic mean 2 K_a K_b/(K_a + K_b), which is what eliminating the face pressure from
+// the two half-cell Darcy fluxes (continuity of pressure and of flux through the face, each half
+// cell with its centre's K) gives exactly, gravity term included. Put layer boundaries on cell
+// faces (layer tops multiples of height/cells) for that to hold.
+//
 // Units: SI throughout (m, s, Pa, kg/m³); any consistent set works if every input uses it.
 #pragma once
 
@@ -55,6 +63,13 @@ struct RichardsSoil {
   double water_density = 1000.0;                                        // ρ_w (kg/m³)
   double gravity = 9.81;                                                // g (m/s²)
   double water_bulk_modulus = std::numeric_limits<double>::infinity();  // K_w (Pa)
+};
+
+// One layer of a layered column: the soil from the top of the layer below (or the base) up to
+// `top` (m above the base).
+struct RichardsLayer {
+  double top = 0;
+  RichardsSoil soil;
 };
 
 // What the top face imposes during a step.
@@ -133,15 +148,27 @@ class Richards1d {
   Richards1d(RichardsSoil soil, double height,
              const std::function<double(double)>& initial_pressure, TopBoundary top,
              BottomBoundary bottom, RichardsOptions options = {})
-      : soil_(std::move(soil)),
-        height_(height),
-        top_(std::move(top)),
-        bottom_(bottom),
-        options_(options) {
+      : Richards1d(std::vector<RichardsLayer>{{height, std::move(soil)}}, height, initial_pressure,
+                   std::move(top), bottom, options) {}
+
+  // Layered column: layers bottom to top, the last one's top at least `height`.
+  Richards1d(std::vector<RichardsLayer> layers, double height,
+             const std::function<double(double)>& initial_pressure, TopBoundary top,
+             BottomBoundary bottom, RichardsOptions options = {})
+      : height_(height), top_(std::move(top)), bottom_(bottom), options_(options) {
     if (!(height_ > 0) || options_.cells < 2) throw std::invalid_argument("Richards1d: bad grid");
-    if (!(soil_.porosity > 0) || !(soil_.saturated_conductivity > 0) || !soil_.saturation ||
-        !soil_.relative_conductivity)
-      throw std::invalid_argument("Richards1d: incomplete soil");
+    if (layers.empty() || !(layers.back().top >= height_ * (1 - 1e-12)))
+      throw std::invalid_argument("Richards1d: the layers must reach the top of the column");
+    for (std::size_t l = 0; l < layers.size(); ++l) {
+      const RichardsSoil& s = layers[l].soil;
+      if (!(s.porosity > 0) || !(s.saturated_conductivity > 0) || !s.saturation ||
+          !s.relative_conductivity)
+        throw std::invalid_argument("Richards1d: incomplete soil");
+      if (s.water_density != layers[0].soil.water_density || s.gravity != layers[0].soil.gravity ||
+          (l > 0 && !(layers[l].top > layers[l - 1].top)))
+        throw std::invalid_argument("Richards1d: layers need one water and ascending tops");
+      soils_.push_back(s);
+    }
     if (options_.time_weight < 0.5 || options_.time_weight > 1.0)
       throw std::invalid_argument("Richards1d: time_weight must lie in [0.5, 1]");
     if ((top_.kind != TopBoundary::Kind::pressure && !top_.flux_in) ||
@@ -151,17 +178,21 @@ class Richards1d {
       throw std::invalid_argument("Richards1d: need p_min < p_max");
     const int n = options_.cells;
     dz_ = height_ / n;
-    rho_g_ = soil_.water_density * soil_.gravity;
+    rho_g_ = soils_[0].water_density * soils_[0].gravity;
     z_.resize(n);
     p_.resize(n);
+    cell_soil_.resize(n);
     for (int i = 0; i < n; ++i) {
       z_[i] = (i + 0.5) * dz_;
       p_[i] = initial_pressure(z_[i]);
+      int l = 0;
+      while (layers[l].top < z_[i]) ++l;
+      cell_soil_[i] = l;
     }
     state_ = top_.kind == TopBoundary::Kind::pressure ? TopState::pressure : TopState::flux;
     if (top_.kind == TopBoundary::Kind::adaptive) state_ = adaptive_state_for_start();
     theta_.resize(n);
-    for (int i = 0; i < n; ++i) theta_[i] = storage(p_[i]);
+    for (int i = 0; i < n; ++i) theta_[i] = storage(p_[i], i);
     initial_storage_ = total_storage();
     dt_ = options_.max_time_step;
     evaluate_explicit_fluxes();
@@ -228,12 +259,14 @@ class Richards1d {
     return (1 - w) * p_[i] + w * p_[i + 1];
   }
 
-  // Θ(p): water volume per soil volume, including the compressible-storage part.
-  double storage(double p) const {
-    const double phi = soil_.porosity;
-    double theta = phi * soil_.saturation(-p);
-    if (std::isfinite(soil_.water_bulk_modulus))
-      theta += phi / soil_.water_bulk_modulus * saturation_integral(p);
+  // Θ(p): water volume per soil volume, including the compressible-storage part, for the soil of
+  // cell `cell` (default: the bottom cell's, the only soil of a homogeneous column).
+  double storage(double p, int cell = 0) const {
+    const RichardsSoil& soil = soils_[cell_soil_[cell]];
+    const double phi = soil.porosity;
+    double theta = phi * soil.saturation(-p);
+    if (std::isfinite(soil.water_bulk_modulus))
+      theta += phi / soil.water_bulk_modulus * saturation_integral(p, soil);
     return theta;
   }
 
@@ -246,7 +279,7 @@ class Richards1d {
  private:
   // ∫_0^p S_w(−p') dp' by composite 8-point Gauss–Legendre; a fixed rule, so storage() is a
   // single-valued function of p and the discrete water balance closes exactly.
-  double saturation_integral(double p) const {
+  double saturation_integral(double p, const RichardsSoil& soil) const {
     static constexpr double x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
                                     0.9602898564975363};
     static constexpr double w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
@@ -258,19 +291,20 @@ class Richards1d {
       const double mid = (k + 0.5) * h, half = 0.5 * h;
       for (int j = 0; j < 4; ++j)
         sum += w[j] *
-               (soil_.saturation(-(mid + half * x[j])) + soil_.saturation(-(mid - half * x[j])));
+               (soil.saturation(-(mid + half * x[j])) + soil.saturation(-(mid - half * x[j])));
     }
     return sum * 0.5 * h;
   }
 
-  double conductivity(double p) const {
-    return soil_.saturated_conductivity * std::max(0.0, soil_.relative_conductivity(-p));
+  double conductivity(double p, int cell) const {
+    const RichardsSoil& soil = soils_[cell_soil_[cell]];
+    return soil.saturated_conductivity * std::max(0.0, soil.relative_conductivity(-p));
   }
 
   // dΘ/dp by a central difference (used only to linearise; the balance uses Θ itself).
-  double capacity(double p) const {
+  double capacity(double p, int cell) const {
     const double h = 1e-4 * rho_g_;
-    const double c = (storage(p + h) - storage(p - h)) / (2 * h);
+    const double c = (storage(p + h, cell) - storage(p - h, cell)) / (2 * h);
     return std::max(c, 1e-14 / rho_g_);
   }
 
@@ -282,7 +316,8 @@ class Richards1d {
 
   // Flux into the soil through the top face for surface pressure ps and top-cell pressure pc.
   double dirichlet_inflow(double ps, double pc) const {
-    const double k = 0.5 * (conductivity(ps) + conductivity(pc));
+    const int top = options_.cells - 1;
+    const double k = 0.5 * (conductivity(ps, top) + conductivity(pc, top));
     return -face_flux(pc, ps, 0.5 * dz_, k);
   }
 
@@ -332,10 +367,12 @@ class Richards1d {
     f.balance.assign(n, 0.0);
     f.a_face.assign(n + 1, 0.0);
     std::vector<double> k(n);
-    for (int i = 0; i < n; ++i) k[i] = conductivity(p[i]);
+    for (int i = 0; i < n; ++i) k[i] = conductivity(p[i], i);
     // Interior faces: face i between cells i−1 and i.
     for (int i = 1; i < n; ++i) {
-      const double kf = 0.5 * (k[i - 1] + k[i]);
+      double kf = 0.5 * (k[i - 1] + k[i]);
+      if (cell_soil_[i - 1] != cell_soil_[i])  // a layer boundary: harmonic mean (header)
+        kf = k[i - 1] + k[i] > 0 ? 2 * k[i - 1] * k[i] / (k[i - 1] + k[i]) : 0.0;
       const double q = face_flux(p[i - 1], p[i], dz_, kf);
       f.balance[i - 1] -= q;
       f.balance[i] += q;
@@ -343,7 +380,7 @@ class Richards1d {
     }
     // Bottom face.
     if (bottom_.kind == BottomBoundary::Kind::pressure) {
-      const double kf = 0.5 * (conductivity(bottom_.pressure) + k[0]);
+      const double kf = 0.5 * (conductivity(bottom_.pressure, 0) + k[0]);
       const double q = face_flux(bottom_.pressure, p[0], 0.5 * dz_, kf);
       f.bottom_inflow = q;
       f.balance[0] += q;
@@ -354,7 +391,7 @@ class Richards1d {
       f.top_inflow = top_.flux_in(t);
     } else {
       const double ps = top_pressure_for(s, t);
-      const double kf = 0.5 * (conductivity(ps) + k[n - 1]);
+      const double kf = 0.5 * (conductivity(ps, n - 1) + k[n - 1]);
       f.top_inflow = -face_flux(p[n - 1], ps, 0.5 * dz_, kf);
       f.a_face[n] = kf / (rho_g_ * 0.5 * dz_);
     }
@@ -383,7 +420,7 @@ class Richards1d {
     bottom_inflow_ += dt * (w * f_new.bottom_inflow + (1 - w) * explicit_.bottom_inflow);
     residual_sum_ += residual;
     p_ = std::move(p_new);
-    for (int i = 0; i < options_.cells; ++i) theta_[i] = storage(p_[i]);
+    for (int i = 0; i < options_.cells; ++i) theta_[i] = storage(p_[i], i);
     t_ += dt;
     state_ = s;
     ++steps_;
@@ -419,7 +456,7 @@ class Richards1d {
       f = fluxes(p, s, t_new);
       double max_residual = 0, sum_residual = 0;
       for (int i = 0; i < n; ++i) {
-        th[i] = storage(p[i]);
+        th[i] = storage(p[i], i);
         const double r =
             dz_ * (th[i] - theta_[i]) - dt * (w * f.balance[i] + (1 - w) * explicit_.balance[i]);
         rhs[i] = -r;
@@ -435,7 +472,7 @@ class Richards1d {
       if (it == options_.max_iterations) break;
       for (int i = 0; i < n; ++i) {
         const double a_lo = f.a_face[i], a_hi = f.a_face[i + 1];
-        diag[i] = dz_ * capacity(p[i]) + dt * w * (a_lo + a_hi);
+        diag[i] = dz_ * capacity(p[i], i) + dt * w * (a_lo + a_hi);
         lower[i] = i > 0 ? -dt * w * a_lo : 0.0;
         upper[i] = i < n - 1 ? -dt * w * a_hi : 0.0;
       }
@@ -462,7 +499,8 @@ class Richards1d {
     for (int i = n - 2; i >= 0; --i) d[i] = (d[i] - c[i] * d[i + 1]) / b[i];
   }
 
-  RichardsSoil soil_;
+  std::vector<RichardsSoil> soils_;  // one per layer, bottom to top
+  std::vector<int> cell_soil_;        // layer of each cell
   double height_;
   TopBoundary top_;
   BottomBoundary bottom_;
