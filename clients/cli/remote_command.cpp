@@ -16,6 +16,7 @@
 
 #include "cascade/v1/simulation.grpc.pb.h"
 #include "server/io/hdf5_writer.h"
+#include "server/scenario/case_loader.h"
 #include "server/scenario/file_text.h"
 
 namespace cascade::cli {
@@ -194,15 +195,13 @@ int simulation_call(Remote& remote, Request request,
   return 0;
 }
 
-std::string read_text(const std::string& path) {
-  if (auto text = file_text(path)) return *text;
-  throw UsageError("cannot read " + path);
-}
-
+// The case is loaded here, as `cascade run` loads it, and sent as a spec: its hyetograph file (and
+// any other file it names) is on this machine, and the server reads no files that a request names.
 int create(Remote& remote) {
   v1::CreateSimulationRequest request;
-  request.set_case_yaml(read_text(remote.positional(0, "a case file")));
-  for (const auto& o : remote.args().all("--set")) request.add_overrides(o);
+  std::vector<CaseOverride> overrides;
+  for (const auto& o : remote.args().all("--set")) overrides.push_back(parse_override(o));
+  *request.mutable_spec() = load_case_file(remote.positional(0, "a case file"), overrides);
   request.set_simulation_id(remote.args().option("--id"));
   grpc::ClientContext context;
   remote.prepare(context);
@@ -610,6 +609,9 @@ int remote_command(const std::string& command, const std::vector<std::string>& a
     Remote remote(command, parsed);
     return handlers().at(command)(remote);
   } catch (const UsageError& e) {
+    std::fprintf(stderr, "cascade %s: %s\n", command.c_str(), e.what());
+    return 2;
+  } catch (const CaseError& e) {  // as `cascade run`: a bad case is the caller's mistake
     std::fprintf(stderr, "cascade %s: %s\n", command.c_str(), e.what());
     return 2;
   } catch (const std::exception& e) {

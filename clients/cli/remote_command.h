@@ -21,7 +21,8 @@ namespace cascade::cli {
 bool is_remote_command(const std::string& command);
 
 // Returns the exit code: 0 done, 1 the server refused or failed (its code and message on stderr),
-// 2 a usage error.
+// 2 a usage error or a bad case file (create loads the case here, hyetograph included, and sends
+// the spec).
 int remote_command(const std::string& command, const std::vector<std::string>& args);
 
 }  // namespace cascade::cli

@@ -186,7 +186,7 @@ void apply_rain_series(const v1::ScenarioSpec& spec, Engine& engine, RunSummary&
   next.rainfall_intensity = *due;
   set_forcing(engine, next,
               "rainfall_intensity " + format_number(engine.forcing().rainfall_intensity) + " -> " +
-                  format_number(*due) + " m/s",
+                  format_number(*due) + " m/s" + rain_series_origin(spec),
               summary);
 }
 

@@ -5,11 +5,15 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
 
+#include "server/scenario/case_units.h"
 #include "server/scenario/case_validation.h"
 #include "server/scenario/file_text.h"
+#include "server/scenario/hyetograph.h"
 
 namespace cascade {
 
@@ -274,14 +278,30 @@ class YamlMapper {
   void map_point2(const YAML::Node& node, pb::Point2* point, const std::string& key) const {
     if (node.size() != 2)
       fail(key, node.Mark(), "a vertex is an [x, z] pair, not " + std::to_string(node.size()) + " numbers");
-    point->set_x(to_double(node[0], node[0].Mark(), indexed(key, 0)));
-    point->set_z(to_double(node[1], node[1].Mark(), indexed(key, 1)));
+    const Descriptor* d = pb::Point2::descriptor();
+    point->set_x(to_double(node[0], node[0].Mark(), indexed(key, 0), si_unit_of(d->FindFieldByName("x"))));
+    point->set_z(to_double(node[1], node[1].Mark(), indexed(key, 1), si_unit_of(d->FindFieldByName("z"))));
   }
 
-  double to_double(const YAML::Node& node, const YAML::Mark& mark, const std::string& key) const {
+  // A number, or "<number> <unit>" for a field whose schema names its SI unit `si_unit` (empty:
+  // a plain number), converted to that unit.
+  double to_double(const YAML::Node& node, const YAML::Mark& mark, const std::string& key,
+                   const std::string& si_unit) const {
     double v = 0;
-    if (!plain_scalar(node) || !YAML::convert<double>::decode(node, v))
-      fail(key, mark, "expected a number, got " + describe(node));
+    if (plain_scalar(node) && YAML::convert<double>::decode(node, v)) {
+      if (!std::isfinite(v)) fail(key, mark, "expected a finite number, got " + describe(node));
+      return v;
+    }
+    const std::optional<NumberWithUnit> given = node.IsScalar() ? split_number_with_unit(node.Scalar()) : std::nullopt;
+    if (!given)
+      fail(key, mark,
+           "expected a number, got " + describe(node) +
+               (si_unit.empty() || !node.IsScalar()
+                    ? std::string()
+                    : " (or a number and a unit of " + dimension_name(si_unit) + ": " + unit_names(si_unit) + ")"));
+    if (si_unit.empty()) fail(key, mark, "takes a plain number without a unit, got " + describe(node));
+    if (const std::string problem = unit_problem(given->unit, si_unit); !problem.empty()) fail(key, mark, problem);
+    v = find_case_unit(given->unit)->to_si(given->number);
     if (!std::isfinite(v)) fail(key, mark, "expected a finite number, got " + describe(node));
     return v;
   }
@@ -297,7 +317,7 @@ class YamlMapper {
     if (node.IsNull() || !node.IsDefined()) fail(key, mark, "has no value");
     switch (field->cpp_type()) {
       case FieldDescriptor::CPPTYPE_DOUBLE: {
-        const double v = to_double(node, mark, key);
+        const double v = to_double(node, mark, key, si_unit_of(field));
         add ? r->AddDouble(message, field, v) : r->SetDouble(message, field, v);
         return;
       }
@@ -355,6 +375,65 @@ class YamlMapper {
   std::map<std::string, YAML::Mark> marks_;
 };
 
+// The unit of a hyetograph column: `name`, or `si` when it is empty.
+const CaseUnit& column_unit(const std::string& name, const std::string& si, const std::string& key,
+                            const YamlMapper& mapper) {
+  const std::string written = name.empty() ? si : name;
+  if (const std::string problem = unit_problem(written, si); !problem.empty()) throw mapper.error_at(key, problem);
+  return *find_case_unit(written);
+}
+
+// Replaces the case's hyetograph with the `rainfall` series of its CSV file (read relative to the
+// case file's folder) and records the file in `rainfall_file`. Errors in the CSV name the key
+// `hydraulics.hyetograph.file` at its line in the case, and the CSV file and line in the message.
+void expand_hyetograph(pb::HydraulicBoundary& hydraulics, const std::filesystem::path& case_directory,
+                       const YamlMapper& mapper) {
+  const std::string key = "hydraulics.hyetograph";
+  const pb::Hyetograph& hyetograph = hydraulics.hyetograph();
+  if (hydraulics.rainfall_intensity() != 0 || hydraulics.rainfall_size() > 0)
+    throw mapper.error_at(key,
+                          "cannot be given together with rainfall_intensity or rainfall: the rain is a "
+                          "constant intensity, a series or a hyetograph");
+  if (!hydraulics.rainfall_file().empty())
+    throw mapper.error_at("hydraulics.rainfall_file", "is set by the loader from hyetograph.file: leave it out");
+  const CaseUnit& time_unit = column_unit(hyetograph.time_unit(), "s", key + ".time_unit", mapper);
+  const CaseUnit& intensity_unit = column_unit(hyetograph.intensity_unit(), "m/s", key + ".intensity_unit", mapper);
+  if (hyetograph.file().empty()) throw mapper.error_at(key + ".file", "is missing: the CSV file of time and intensity");
+  const std::string file = (case_directory / hyetograph.file()).lexically_normal().string();
+  const std::optional<std::string> text = file_text(file);
+  if (!text) throw mapper.error_at(key + ".file", "cannot read the hyetograph " + file);
+  try {
+    for (pb::RainfallPoint& point : read_hyetograph(*text, time_unit, intensity_unit))
+      *hydraulics.add_rainfall() = std::move(point);
+  } catch (const HyetographError& e) {
+    throw mapper.error_at(key + ".file",
+                          file + (e.line() > 0 ? ":" + std::to_string(e.line()) : std::string()) + ": " + e.what());
+  }
+  hydraulics.set_rainfall_file(file);
+  hydraulics.clear_hyetograph();
+}
+
+// load_case_text and load_case_file: a case file has a folder, from which its hyetograph is read;
+// a case given as text has none, and a hyetograph in it is left for check_spec to refuse.
+pb::ScenarioSpec load_case(const std::string& yaml_text, const std::vector<CaseOverride>& overrides,
+                           const std::string& file_name, const std::optional<std::filesystem::path>& case_directory) {
+  YamlMapper mapper(file_name, overrides);
+  pb::ScenarioSpec spec;
+  try {
+    YAML::Node root = YAML::Load(yaml_text);
+    mapper.apply_overrides(root);
+    mapper.map_root(root, &spec);
+  } catch (const YAML::Exception& e) {
+    // Syntax errors, and anything else yaml-cpp finds wrong with the text.
+    throw CaseError("(yaml)", e.msg, e.mark.is_null() ? -1 : e.mark.line + 1, e.mark.column + 1, file_name);
+  }
+  if (case_directory && spec.hydraulics().has_hyetograph())
+    expand_hyetograph(*spec.mutable_hydraulics(), *case_directory, mapper);
+  check_spec(spec, [&](const std::string& key, const std::string& message) { throw mapper.error_at(key, message); });
+  apply_defaults(spec);
+  return spec;
+}
+
 }  // namespace
 
 CaseOverride parse_override(const std::string& text) {
@@ -374,25 +453,13 @@ CaseOverride parse_override(const std::string& text) {
 
 pb::ScenarioSpec load_case_text(const std::string& yaml_text, const std::vector<CaseOverride>& overrides,
                                 const std::string& file_name) {
-  YamlMapper mapper(file_name, overrides);
-  pb::ScenarioSpec spec;
-  try {
-    YAML::Node root = YAML::Load(yaml_text);
-    mapper.apply_overrides(root);
-    mapper.map_root(root, &spec);
-  } catch (const YAML::Exception& e) {
-    // Syntax errors, and anything else yaml-cpp finds wrong with the text.
-    throw CaseError("(yaml)", e.msg, e.mark.is_null() ? -1 : e.mark.line + 1, e.mark.column + 1, file_name);
-  }
-  check_spec(spec, [&](const std::string& key, const std::string& message) { throw mapper.error_at(key, message); });
-  apply_defaults(spec);
-  return spec;
+  return load_case(yaml_text, overrides, file_name, std::nullopt);
 }
 
 pb::ScenarioSpec load_case_file(const std::string& path, const std::vector<CaseOverride>& overrides) {
   const std::optional<std::string> text = file_text(path);
   if (!text) throw CaseError("(file)", "cannot open the case file", -1, -1, path);
-  pb::ScenarioSpec spec = load_case_text(*text, overrides, path);
+  pb::ScenarioSpec spec = load_case(*text, overrides, path, std::filesystem::path(path).parent_path());
   if (spec.name().empty()) {
     const auto slash = path.find_last_of('/');
     std::string stem = path.substr(slash == std::string::npos ? 0 : slash + 1);

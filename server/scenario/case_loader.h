@@ -3,7 +3,11 @@
 // The YAML layout is the proto message tree: keys are the proto field names, nested as in the
 // proto; a oneof appears as one key naming its case (`shape: {box: {min: [..], max: [..]}}`,
 // `{name: water, water: {density: 1000}}`); enums are their value names in lowercase
-// (`kind: fluid`, `kind: front`); a Point2 is an `[x, z]` pair. Every problem — YAML syntax,
+// (`kind: fluid`, `kind: front`); a Point2 is an `[x, z]` pair. A double field whose schema names
+// its SI unit (the `unit` option, units.proto) may be written "<number> <unit>" (`end_time: 36 h`,
+// also inside lists: `min: [0 m, 50 cm]`) and is converted to SI (case_units.h); a field without
+// one is a plain number. A `hydraulics.hyetograph` is read from its CSV file (hyetograph.h) into
+// the `rainfall` series. Every problem — YAML syntax,
 // unknown or duplicated keys, wrong types, wrong vector lengths, impossible values — raises a
 // CaseError naming the key as a dotted path (`bodies[1].shape.box.min`) and its line in the file.
 #pragma once
@@ -27,11 +31,14 @@ struct CaseOverride {
 CaseOverride parse_override(const std::string& text);
 
 // Reads a case file, applies the overrides to its YAML tree, maps the tree onto a ScenarioSpec,
+// expands its hyetograph (a CSV file relative to the case file's folder) into `rainfall`,
 // validates it (validate_spec) and fills in the defaults (apply_defaults). An empty `name` becomes
 // the file's stem.
 cascade::v1::ScenarioSpec load_case_file(const std::string& path, const std::vector<CaseOverride>& overrides = {});
 
-// As load_case_file, from text; `file_name` only labels the errors.
+// As load_case_file, from text; `file_name` only labels the errors. Text has no folder to read
+// files from: a hyetograph in it is an error (the server loads case text sent to it this way and
+// reads no files that a request names).
 cascade::v1::ScenarioSpec load_case_text(const std::string& yaml_text, const std::vector<CaseOverride>& overrides = {},
                                          const std::string& file_name = "<case>");
 

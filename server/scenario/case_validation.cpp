@@ -534,6 +534,10 @@ class SpecChecker {
     if (init.hydraulics().rainfall_size() > 0)
       error("initialisation.hydraulics.rainfall", "is a time series; the initialisation stage holds constant "
                                                   "conditions: give rainfall_intensity");
+    if (init.hydraulics().has_hyetograph())
+      error("initialisation.hydraulics.hyetograph",
+            "is a time series; the initialisation stage holds constant "
+            "conditions: give rainfall_intensity");
     check_hydraulic_boundary("initialisation.hydraulics", init.hydraulics());
   }
 
@@ -585,6 +589,14 @@ class SpecChecker {
     if (h.rainfall_size() > 0 && h.rainfall_intensity() != 0)
       error(key + ".rainfall", "cannot be given together with rainfall_intensity: give a constant intensity or a "
                                "time series");
+    // The case loader replaces the hyetograph of a case file with its series; any other names a
+    // file that nobody reads here (the server reads no files that a request names).
+    if (h.has_hyetograph())
+      error(key + ".hyetograph",
+            "names a file, which only the loader of a case file reads (cascade run, cascade "
+            "create): a case sent as text, or a spec, carries the rainfall series instead");
+    if (!h.rainfall_file().empty() && h.rainfall_size() == 0)
+      error(key + ".rainfall_file", "names the hyetograph file of the rainfall series, and there is no series");
     for (int i = 0; i < h.rainfall_size(); ++i) {
       const std::string point_key = indexed(key + ".rainfall", i);
       const pb::RainfallPoint& point = h.rainfall(i);
@@ -609,8 +621,9 @@ class SpecChecker {
     }
     if (h.has_surface_pressure()) {
       if (h.rainfall_intensity() != 0 || h.rainfall_size() > 0)
-        error(key + ".surface_pressure", "holds the pore pressure of the whole free surface and cannot be given "
-                                         "together with rain: leave out rainfall_intensity and rainfall");
+        error(key + ".surface_pressure",
+              "holds the pore pressure of the whole free surface and cannot be given "
+              "together with rain: leave out rainfall_intensity, rainfall and hyetograph");
       above_minus_bulk_modulus(key + ".surface_pressure", h.surface_pressure());
     }
     if (h.has_region()) check_min_max(key + ".region", h.region().min(), h.region().max(), "the rain region");

@@ -11,4 +11,9 @@ std::optional<double> due_rain_change(const v1::ScenarioSpec& spec, const Engine
   return due;
 }
 
+std::string rain_series_origin(const v1::ScenarioSpec& spec) {
+  const std::string& file = spec.hydraulics().rainfall_file();
+  return file.empty() ? std::string() : " (hyetograph " + file + ")";
+}
+
 }  // namespace cascade

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 
 #include "cascade/v1/scenario.pb.h"
 #include "server/core/engine.h"
@@ -13,5 +14,9 @@ namespace cascade {
 // the engine's; nothing for a case without a series. A caller that has steered the intensity stops
 // asking: the steered value replaces the series for the rest of the run.
 std::optional<double> due_rain_change(const v1::ScenarioSpec& spec, const Engine& engine);
+
+// " (hyetograph FILE)" when the case's series was read from a hyetograph file (rainfall_file),
+// else empty: the runner's and the server's forcing events say where the series came from.
+std::string rain_series_origin(const v1::ScenarioSpec& spec);
 
 }  // namespace cascade

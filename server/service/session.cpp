@@ -458,7 +458,9 @@ void Session::advance() {
         std::lock_guard lock(mutex_);
         forcing_ = forcing_message(next, config_.engine.dimensions);
       }
-      add_event("forcing", "rain series: rainfall.intensity " + std::to_string(*due) + " m/s", "case");
+      add_event("forcing",
+                "rain series: rainfall.intensity " + std::to_string(*due) + " m/s" + rain_series_origin(config_.spec),
+                "case");
     }
   }
   try {

@@ -3,6 +3,7 @@ with one line on stderr that names the key (and, for a key in the file, its line
 
 Each tests/cli/bad_cases/NAME.yaml is cases/hydrostatic_tank_2d.yaml with one defect and the same line
 numbers, or, for the soil_* files, cases/infiltration_1d.yaml; BAD_CASES below says what each must report.
+A soil_hyetograph_* case may name a CSV file beside it (a hyetograph).
 """
 
 import re
@@ -56,6 +57,20 @@ BAD_CASES = {
                                      r"unknown key \(known here: van_genuchten, gardner, liakopoulos\)"),
     "soil_drying_above_ponding": (r"hydraulics\.drying_pressure", 62, r"must be below ponding_pressure"),
     "soil_probe_phase_water": (r"probes\[0\]\.phase", 69, r"'pore_pressure' is a field of soil particles"),
+    # Units: "<number> <unit>" where the schema names the field's SI unit (docs/cases.md, "Units").
+    "units_wrong_dimension": (r"dp", 8, r"takes a length \(m\); 'kPa' is a pressure"),
+    "units_unknown": (r"end_time", 10, r"unknown unit 'fortnight' \(units of a time: s, min, h, day, d\)"),
+    "units_on_plain_number": (r"h_over_dp", 9, r"takes a plain number without a unit, got '1\.3 m'"),
+    "units_malformed": (r"dp", 8, r"expected a number, got '2cm' \(or a number and a unit of a length: m, cm, mm, km\)"),
+    # Hyetographs: errors in the CSV name the key at its line in the case, and the CSV file and row.
+    "soil_hyetograph_negative_intensity": (r"hydraulics\.hyetograph\.file", 61,
+                                           r"/soil_hyetograph_negative_intensity\.csv:4: the intensity must not be "
+                                           r"negative \(is -5\)"),
+    "soil_hyetograph_missing_file": (r"hydraulics\.hyetograph\.file", 61,
+                                     r"cannot read the hyetograph .*/bad_cases/no_such_storm\.csv"),
+    "soil_hyetograph_time_unit": (r"hydraulics\.hyetograph\.time_unit", 61, r"takes a time \(s\); 'mm' is a length"),
+    "soil_hyetograph_with_rainfall": (r"hydraulics\.hyetograph", 62,
+                                      r"cannot be given together with rainfall_intensity or rainfall"),
     # The particle builder knows the body's extent: p_w = ρ g (z_wt - z) < -K_w at the top.
     "soil_water_table_too_deep": (r"bodies\[1\]\.initial\.water_table", None, r"at or below -K_w = -200000"),
 }
@@ -90,6 +105,18 @@ class BadCaseFiles(unittest.TestCase):
                 self.assertFalse(out.exists(), "a case error must not create the output folder")
                 self.assertEqual(p.stdout, "")
 
+    def test_create_loads_the_case_on_the_client(self):
+        # `cascade create` reads the case (and its hyetograph) here and sends the spec: a bad case is
+        # reported as by `cascade run`, before any server is asked (none listens at port 1).
+        for name in ("units_unknown", "soil_hyetograph_negative_intensity"):
+            with self.subTest(case=name):
+                key, line, message = BAD_CASES[name]
+                path = clitest.SOURCE_DIR / "tests/cli/bad_cases" / f"{name}.yaml"
+                p = clitest.run("create", path, "--server", "127.0.0.1:1")
+                self.assertEqual(p.returncode, 2, p.stderr)
+                self.assertRegex(p.stderr.strip(), rf"^cascade create: {re.escape(str(path))}:{line}:\d+: key '{key}': "
+                                                   rf".*{message}$")
+
     def test_missing_case_file(self):
         out = clitest.out_dir("bad_missing_file")
         missing = clitest.WORK_DIR / "no_such_case.yaml"
@@ -105,7 +132,8 @@ class BadOverridesAndOptions(unittest.TestCase):
         "unknown_key": (["--set", "dpp=0.02"], r"key 'dpp': unknown key 'dpp' .*\(from --set dpp=0\.02\)"),
         "unknown_nested": (["--set", "bodies[1].colour=blue"], r"key 'bodies\[1\]\.colour': unknown key"),
         "index_out_of_range": (["--set", "bodies[5].name=x"], r"key 'bodies\[5\]\.name': .*none at \[5\]"),
-        "bad_value": (["--set", "dp=abc"], r"key 'dp': expected a number, got 'abc' \(from --set dp=abc\)"),
+        "bad_value": (["--set", "dp=abc"], r"key 'dp': expected a number, got 'abc' \(or a number and a unit of a "
+                                           r"length: m, cm, mm, km\) \(from --set dp=abc\)"),
         "invalid_value": (["--set", "dp=-1"], r"key 'dp': must be greater than 0 \(is -1\) \(from --set dp=-1\)"),
         "no_equals": (["--set", "dp"], r"key '--set': 'dp' is not of the form"),
         "bad_yaml": (["--set", "gravity=[0, -9.81"], r"key '--set': the value of .* is not valid YAML"),

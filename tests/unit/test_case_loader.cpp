@@ -245,7 +245,11 @@ TEST(CaseOverrides, IndexOutOfRangeIsAnError) {
 }
 
 TEST(CaseOverrides, BadValueNamesTheOverride) {
-  expect_error(base(), {"dp", -1, "expected a number, got 'abc' (from --set dp=abc)"}, {parse_override("dp=abc")});
+  expect_error(base(),
+               {"dp", -1,
+                "expected a number, got 'abc' (or a number and a unit of a length: m, cm, mm, km) "
+                "(from --set dp=abc)"},
+               {parse_override("dp=abc")});
   expect_error(base(), {"dp", -1, "must be greater than 0 (is -1) (from --set dp=-1)"}, {parse_override("dp=-1")});
 }
 

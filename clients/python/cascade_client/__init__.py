@@ -53,7 +53,10 @@ class Client:
         return getattr(self._stub, method)(request, metadata=self._metadata, timeout=timeout)
 
     def create(self, case_path, overrides=(), simulation_id=""):
-        """A simulation of a case file (YAML); `overrides` as `cascade run --set`."""
+        """A simulation of a case file (YAML); `overrides` as `cascade run --set`. The file's text is
+        sent and the server loads it: a case whose rain is a `hyetograph` (a CSV file, which the
+        server does not read) is refused with INVALID_ARGUMENT; create it with `cascade create`,
+        which loads the case here and sends the expanded series."""
         text = pathlib.Path(case_path).read_text()
         reply = self.call("CreateSimulation", pb.CreateSimulationRequest(
             case_yaml=text, overrides=list(overrides), simulation_id=simulation_id))
