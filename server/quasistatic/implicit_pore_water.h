@@ -45,7 +45,7 @@ struct ImplicitPoreWaterSettings {
   int max_iterations = 20;          // a step not converged by then is retried at half the step
   // The largest change of a particle's water content Θ in one step that the step control aims
   // at; a step that changes it by more than twice as much is retried at half the step.
-  double water_content_change = 0.01;
+  double water_content_change = 0.003;
 };
 
 // Volumes of pore water (m³ in 3D, m² in 2D: per metre of width) since the stage began, at ρ_w0.

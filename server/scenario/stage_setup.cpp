@@ -28,6 +28,7 @@ StagePlan stage_plan(const v1::Stage& stage) {
       if (w.max_dt() > 0) plan.pore_water.max_dt = w.max_dt();
       if (w.pressure_tolerance() > 0) plan.pore_water.pressure_tolerance = w.pressure_tolerance();
       if (w.max_iterations() > 0) plan.pore_water.max_iterations = w.max_iterations();
+      if (w.water_content_change() > 0) plan.pore_water.water_content_change = w.water_content_change();
       break;
     }
     case v1::Stage::kDynamic:

@@ -30,7 +30,15 @@ StagedEngine::StagedEngine(std::unique_ptr<Engine> dynamic, const EngineConfig& 
   enter(0, "the run starts");
 }
 
+void StagedEngine::sync() const {
+  if (!unsynced_) return;
+  pore_water_state_.forcing = dynamic_->forcing();  // as steered since the last step
+  dynamic_->restore(pore_water_state_);
+  unsynced_ = false;
+}
+
 void StagedEngine::enter(int stage, const std::string& reason) {
+  sync();
   const StagePlan& next = plan_.at(std::size_t(stage));
   StageChange change;
   change.time = dynamic_->time();
@@ -67,29 +75,29 @@ void StagedEngine::step() {
 
 void StagedEngine::pore_water_step() {
   const StagePlan& stage = plan_[std::size_t(current_)];
-  double limit = next_forcing_time() - dynamic_->time();
-  if (stage.end_time) limit = std::min(limit, *stage.end_time - dynamic_->time());
+  double limit = next_forcing_time() - time();
+  if (stage.end_time) limit = std::min(limit, *stage.end_time - time());
   // A step never shorter than min_dt because of a target just ahead: it then reaches past it.
   limit = std::max(limit, stage.pore_water.min_dt);
   pore_water_state_.forcing = dynamic_->forcing();  // as steered since the last step
   pore_water_->step(pore_water_state_, pore_water_state_.forcing, limit);
-  dynamic_->restore(pore_water_state_);
+  unsynced_ = true;
 }
 
 std::optional<std::string> StagedEngine::stage_end_reached() {
   const StagePlan& stage = plan_[std::size_t(current_)];
-  if (stage.end_time && dynamic_->time() >= *stage.end_time * (1 - 1e-12))
+  if (stage.end_time && time() >= *stage.end_time * (1 - 1e-12))
     return "the stage's end time " + text(*stage.end_time) + " s";
   if (stage.kind == StageKind::pore_water && stage.yield_band.active()) {
     const std::string reached =
-        yield_band_reached(measure_yield_band(dynamic_->frame(), stage.yield_band, config_.dp), stage.yield_band);
+        yield_band_reached(measure_yield_band(frame(), stage.yield_band, config_.dp), stage.yield_band);
     if (!reached.empty()) return reached;
   }
   return std::nullopt;
 }
 
 double StagedEngine::next_forcing_time() const {
-  const double now = dynamic_->time();
+  const double now = time();
   for (const double t : forcing_times_)
     if (t > now * (1 + 1e-12) + 1e-12) return t;
   return std::numeric_limits<double>::infinity();
@@ -109,6 +117,7 @@ void StagedEngine::advance_stage(const std::string& caller) {
 }
 
 EngineState StagedEngine::state() const {
+  sync();
   EngineState s = dynamic_->state();
   s.stage = current_;
   if (pore_water_) s.stage_values[kNextDt] = pore_water_->next_dt();
@@ -120,6 +129,7 @@ void StagedEngine::restore(const EngineState& s) {
     throw std::invalid_argument("the state is of stage " + std::to_string(s.stage) + "; the case has " +
                                 std::to_string(plan_.size()));
   dynamic_->restore(s);
+  unsynced_ = false;
   current_ = s.stage;
   changes_.clear();  // the state's history replaces this engine's
   pore_water_.reset();

@@ -7,8 +7,8 @@
 // The dynamic engine holds the particle fields in every stage. The pore-water stage takes them
 // (Engine::state) when it begins, advances the pore pressure, saturation and effective stress with
 // its own implicit steps (quasistatic/implicit_pore_water.h) and hands them back after each step
-// (Engine::restore), so that frames, probes, checkpoints and the next stage see them; the
-// skeleton does not move in it. One implicit step is one step of the run's step count.
+// (Engine::restore) when frames, states or the next stage need them; the skeleton does not move
+// in it. One implicit step is one step of the run's step count.
 #pragma once
 
 #include <memory>
@@ -48,13 +48,16 @@ class StagedEngine final : public Engine {
                std::vector<double> forcing_times);
 
   void step() override;
-  double time() const override { return dynamic_->time(); }
-  std::uint64_t step_count() const override { return dynamic_->step_count(); }
-  double last_dt() const override { return dynamic_->last_dt(); }
+  double time() const override { return unsynced_ ? pore_water_state_.time : dynamic_->time(); }
+  std::uint64_t step_count() const override { return unsynced_ ? pore_water_state_.steps : dynamic_->step_count(); }
+  double last_dt() const override { return unsynced_ ? pore_water_state_.last_dt : dynamic_->last_dt(); }
   std::size_t particle_count() const override { return dynamic_->particle_count(); }
   std::size_t lost_particles() const override { return dynamic_->lost_particles(); }
   std::size_t device_bytes() const override { return dynamic_->device_bytes(); }
-  FieldFrame frame() const override { return dynamic_->frame(); }
+  FieldFrame frame() const override {
+    sync();
+    return dynamic_->frame();
+  }
   const char* device_name() const override { return dynamic_->device_name(); }
   void set_forcing(const HydraulicForcing& forcing) override { dynamic_->set_forcing(forcing); }
   HydraulicForcing forcing() const override { return dynamic_->forcing(); }
@@ -71,6 +74,8 @@ class StagedEngine final : public Engine {
   WaterBalance water_balance() const { return pore_water_ ? pore_water_->balance() : WaterBalance{}; }
 
  private:
+  // Hands the implicit stage's fields to the dynamic engine, which frames and states read.
+  void sync() const;
   void enter(int stage, const std::string& reason);
   void pore_water_step();
   std::optional<std::string> stage_end_reached();
@@ -84,7 +89,8 @@ class StagedEngine final : public Engine {
   std::vector<StageChange> changes_;
   bool started_ = false;
   std::unique_ptr<ImplicitPoreWater> pore_water_;
-  EngineState pore_water_state_;  // the fields the implicit stage advances
+  mutable EngineState pore_water_state_;  // the fields the implicit stage advances
+  mutable bool unsynced_ = false; // they are ahead of the dynamic engine's
 };
 
 }  // namespace cascade
