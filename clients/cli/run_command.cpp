@@ -47,7 +47,7 @@ struct RunOptions {
   std::filesystem::path out_dir;
   std::vector<CaseOverride> overrides;
   std::optional<double> until;
-  std::filesystem::path replay;  // a journal whose forcing changes the run repeats
+  std::filesystem::path replay;  // a journal whose forcing changes and stage hand-overs the run repeats
   int threads = 0;
   Precision precision = kBuildPrecision;
 };

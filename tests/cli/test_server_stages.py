@@ -3,7 +3,7 @@ CLI on a paused simulation and through the Python client on a running one and a 
 switch is journaled (`advance_stage` with the caller and the reason, then `stage_changed`),
 reported as an event with the caller and shown in the status (stage, stage_name) to watchers;
 refusals (last stage, ended run, a case without stages, viewer, bad name, bad reason) have their
-codes; `cascade run --replay` of the journal switches at the same step and ends with the same bits.
+codes; a checkpoint keeps the stage; `cascade run --replay` of the journal switches at the same step and ends with the same bits.
 
 tests/cli/fixtures/staged_column.yaml: stages soak (pore water, no end criterion) and dynamic."""
 
@@ -189,6 +189,11 @@ class AdvanceThroughPython(unittest.TestCase):
             self.assertEqual((reply.state, reply.status.step, reply.status.stage_name), (reply.CREATED, 0, "dynamic"))
             entry = next(e for e in journal_entries(reply.journal_path) if e["command"] == "advance_stage")
             self.assertEqual((int(entry.get("step", 0)), entry["caller"], entry.get("detail", "")), (0, "alice", ""))
+            # A checkpoint carries the stage: restored, the simulation is still in the dynamic stage.
+            sim.step(2)
+            restored = sim.restore(sim.checkpoint().name)
+            self.assertEqual((restored.status.step, restored.status.stage, restored.status.stage_name), (2, 1, "dynamic"))
+            self.assertEqual(sim.step(1).status.stage_name, "dynamic")
 
             refusals = (
                 (client.simulation("c"), {}, grpc.StatusCode.FAILED_PRECONDITION, "simulations/c: the dynamic stage"),
