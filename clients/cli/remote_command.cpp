@@ -48,7 +48,7 @@ const std::set<std::string> kValueOptions = {
     "--server", "--token", "--tls-ca", "--set",    "--id",     "--at",   "--interval",  "--phase",     "--box",
     "--stride", "--out",   "--since",  "--field",  "--translucent", "--colour-map", "--min", "--max", "--camera",
     "--azimuth", "--elevation", "--zoom", "--fov", "--eye", "--target", "--width", "--height", "--background",
-    "--frames", "--every-sim", "--every-wall", "--count"};
+    "--frames", "--every-sim", "--every-wall", "--count", "--reason"};
 
 Arguments parse_arguments(const std::vector<std::string>& args) {
   Arguments a;
@@ -176,10 +176,11 @@ const char* state_name(v1::Simulation::State state) {
 }
 
 void print_simulation(const v1::Simulation& s) {
-  std::printf("%s  %s  %s  t = %.6g s of %.6g, step %llu, %llu particles%s%s\n", s.name().c_str(),
+  std::printf("%s  %s  %s  t = %.6g s of %.6g, step %llu, %llu particles, stage %s%s%s\n", s.name().c_str(),
               s.case_name().c_str(), state_name(s.state()), s.status().time(), s.end_time(),
               static_cast<unsigned long long>(s.status().step()), static_cast<unsigned long long>(s.particle_count()),
-              s.failure_reason().empty() ? "" : "  failure: ", s.failure_reason().c_str());
+              s.status().stage_name().c_str(), s.failure_reason().empty() ? "" : "  failure: ",
+              s.failure_reason().c_str());
 }
 
 // A unary call whose reply is a Simulation.
@@ -272,9 +273,9 @@ int watch(Remote& remote) {
       std::puts(json_of(update).c_str());
     } else if (update.has_status()) {
       const auto& s = update.status();
-      std::printf("%s  t = %.6g s  step %llu  dt = %.3g s  %.1f steps/s  KE = %.4g J  max soil speed %.3g m/s\n",
+      std::printf("%s  t = %.6g s  step %llu  dt = %.3g s  %.1f steps/s  KE = %.4g J  max soil speed %.3g m/s  stage %s\n",
                   state_name(s.state()), s.time(), static_cast<unsigned long long>(s.step()), s.dt(),
-                  s.steps_per_second(), s.kinetic_energy(), s.max_soil_speed());
+                  s.steps_per_second(), s.kinetic_energy(), s.max_soil_speed(), s.stage_name().c_str());
     } else {
       const auto& e = update.event();
       std::printf("event  t = %.6g s  step %llu  %s: %s (%s)\n", e.time(), static_cast<unsigned long long>(e.step()),
@@ -578,6 +579,12 @@ const std::map<std::string, Handler>& handlers() {
          return simulation_call(r, request, &Stub::RunSimulationUntil);
        }},
       {"set", set_forcing},
+      {"advance-stage",
+       [](Remote& r) {
+         auto request = named<v1::AdvanceStageRequest>(r);
+         request.set_reason(r.args().option("--reason"));
+         return simulation_call(r, request, &Stub::AdvanceStage);
+       }},
       {"watch", watch},
       {"query", query},
       {"snapshot", snapshot},

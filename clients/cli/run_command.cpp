@@ -47,7 +47,7 @@ struct RunOptions {
   std::filesystem::path out_dir;
   std::vector<CaseOverride> overrides;
   std::optional<double> until;
-  std::filesystem::path replay;  // a journal whose forcing changes the run repeats
+  std::filesystem::path replay;  // a journal whose forcing changes and stage hand-overs the run repeats
   int threads = 0;
   Precision precision = kBuildPrecision;
 };
@@ -190,22 +190,32 @@ void apply_rain_series(const v1::ScenarioSpec& spec, Engine& engine, RunSummary&
               summary);
 }
 
-// The forcing changes of a steered run's journal, each applied before the step that followed it
-// there: the same case and build then give the same bits.
+// The steering of a run's journal (forcing changes and the operator's stage hand-overs), each
+// applied before the step that followed it there, in the journal's order: the same case and build
+// then give the same bits.
 class JournalReplay {
  public:
   explicit JournalReplay(const std::filesystem::path& path) {
     for (auto& entry : read_journal(path))
-      if (entry.command() == "update_forcing") changes_.push_back(std::move(entry));
+      if (entry.command() == "update_forcing" || entry.command() == "advance_stage") changes_.push_back(std::move(entry));
   }
 
   // Applies the changes due at the engine's step; false once the rain intensity has been steered.
+  // A hand-over leaves its stage change in the engine (Engine::take_stage_changes).
   bool apply(Engine& engine, int dimensions, RunSummary& summary) {
     while (next_ < changes_.size() && changes_[next_].step() <= engine.step_count()) {
       const auto& entry = changes_[next_++];
       if (entry.step() < engine.step_count())
         throw std::runtime_error("journal change at step " + std::to_string(entry.step()) +
                                  " lies before the replay's step " + std::to_string(engine.step_count()));
+      if (entry.command() == "advance_stage") {
+        try {
+          engine.advance_stage(entry.caller());
+        } catch (const std::invalid_argument& e) {
+          throw std::runtime_error("journal's advance_stage at step " + std::to_string(entry.step()) + ": " + e.what());
+        }
+        continue;
+      }
       const std::vector<std::string> mask(entry.update_mask().begin(), entry.update_mask().end());
       set_forcing(engine, updated_forcing(engine.forcing(), entry.new_forcing(), mask, dimensions),
                   "replayed " + join(mask) + " from the journal", summary);
@@ -315,6 +325,7 @@ int run_command(const std::vector<std::string>& args) {
                                 std::to_string(engine->time()) + " s; outputs hold the run up to there");
       }
       const bool series_applies = !replay || replay->apply(*engine, config.dimensions, summary);
+      record_stages();  // a replayed hand-over
       if (series_applies) apply_rain_series(spec, *engine, summary);
       engine->step();
       record_stages();

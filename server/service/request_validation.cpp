@@ -148,6 +148,20 @@ grpc::Status check_update_forcing(const v1::UpdateForcingRequest& request, const
   return grpc::Status::OK;
 }
 
+grpc::Status check_advance_stage(const v1::AdvanceStageRequest& request) {
+  const std::string& reason = request.reason();
+  if (reason.size() > kMaxReasonBytes)
+    return invalid("reason", "at most " + std::to_string(kMaxReasonBytes) + " bytes, got " + std::to_string(reason.size()));
+  const auto control = std::find_if(reason.begin(), reason.end(), [](char c) {
+    return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+  });
+  if (control != reason.end())
+    return invalid("reason", "holds a control character (code " +
+                                 std::to_string(static_cast<unsigned char>(*control)) + ") at byte " +
+                                 std::to_string(control - reason.begin()));
+  return grpc::Status::OK;
+}
+
 grpc::Status check_query(const v1::QueryFieldsRequest& request) {
   const std::string& phase = request.phase();
   if (!phase.empty() && phase != "water" && phase != "soil" && phase != "boundary")

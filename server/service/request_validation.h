@@ -19,6 +19,7 @@ constexpr double kMaxPondingPressure = 1e8;      // Pa, |p_max| and |p_min|
 constexpr std::uint32_t kMaxStride = 1'000'000;
 constexpr std::size_t kMaxCaseYamlBytes = 1 << 20;
 constexpr double kMinWatchInterval = 0.05, kMaxWatchInterval = 3600;  // s of wall time
+constexpr std::size_t kMaxReasonBytes = 500;  // an operator's note; the journal keeps one line per entry
 
 grpc::Status invalid(const std::string& field, const std::string& message);
 
@@ -37,6 +38,9 @@ grpc::Status check_run_until(const v1::RunSimulationUntilRequest& request, doubl
 // `current`: the forcing now, for the p_min < p_max check of a change that names only one of them.
 grpc::Status check_update_forcing(const v1::UpdateForcingRequest& request, const v1::Forcing& current,
                                   int dimensions, double end_time);
+// `reason`: at most kMaxReasonBytes, no control characters (it goes into one journal line and the
+// events that clients print a line each).
+grpc::Status check_advance_stage(const v1::AdvanceStageRequest& request);
 // The field names are checked against the frame, once it is taken (field_query.h).
 grpc::Status check_query(const v1::QueryFieldsRequest& request);
 grpc::Status check_since_time(double since_time);

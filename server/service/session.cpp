@@ -52,6 +52,13 @@ std::vector<std::string> names_of_probes(const v1::ScenarioSpec& spec) {
   return names;
 }
 
+std::vector<std::string> names_of_stages(const v1::ScenarioSpec& spec) {
+  std::vector<std::string> names;
+  for (const auto& plan : stage_plans(spec)) names.push_back(plan.name);
+  if (names.empty()) names.push_back("dynamic");  // scenario.proto: no stages, one dynamic stage
+  return names;
+}
+
 }  // namespace
 
 struct Session::ScheduledForcing {
@@ -63,7 +70,7 @@ struct Session::ScheduledForcing {
 };
 
 struct Session::Command {
-  enum class Kind { start, pause, resume, step, run_until, update_forcing, query, tap_frames, checkpoint };
+  enum class Kind { start, pause, resume, step, run_until, update_forcing, advance_stage, query, tap_frames, checkpoint };
   Kind kind;
   std::string caller;
   std::uint64_t steps = 0;
@@ -74,11 +81,15 @@ struct Session::Command {
   FrameDone frame_done;
   std::weak_ptr<FrameTap> tap;
   CheckpointDone checkpoint_done;
+  std::string reason;  // advance_stage
 };
 
 Session::Session(SessionConfig config)
-    : config_(std::move(config)), probe_names_(names_of_probes(config_.spec)) {
+    : config_(std::move(config)),
+      probe_names_(names_of_probes(config_.spec)),
+      stage_names_(names_of_stages(config_.spec)) {
   status_.set_state(v1::Simulation::CREATED);
+  status_.set_stage_name(stage_names_.front());
   forcing_ = forcing_message(config_.engine.forcing, config_.engine.dimensions);
   if (config_.restore) {  // published at once: the reply to RestoreCheckpoint shows where it is
     const EngineState& restored = config_.restore->checkpoint.engine;
@@ -87,6 +98,8 @@ Session::Session(SessionConfig config)
     status_.set_time(restored.time);
     status_.set_step(restored.steps);
     status_.set_dt(restored.last_dt);
+    status_.set_stage(std::uint32_t(restored.stage));
+    status_.set_stage_name(stage_names_.at(std::size_t(restored.stage)));
     forcing_ = forcing_message(restored.forcing, config_.engine.dimensions);
   }
   thread_ = std::thread([this] { run_loop(); });
@@ -130,6 +143,11 @@ void Session::update_forcing(const v1::Forcing& forcing, std::vector<std::string
                              std::optional<double> effective_time, const std::string& caller, Done done) {
   enqueue({Command::Kind::update_forcing, caller, 0, 0, {forcing, std::move(mask), 0, caller, nullptr}, effective_time,
            std::move(done), {}});
+}
+void Session::advance_stage(const std::string& reason, const std::string& caller, Done done) {
+  Command command{Command::Kind::advance_stage, caller, 0, 0, {}, {}, std::move(done), {}};
+  command.reason = reason;
+  enqueue(std::move(command));
 }
 void Session::query(FrameDone done) {
   enqueue({Command::Kind::query, {}, 0, 0, {}, {}, {}, std::move(done)});
@@ -288,7 +306,7 @@ void Session::initialise() {
     if (steps > 0) add_event("initialisation", std::to_string(steps) + " steps; the clock restarts at t = 0", "server");
     rate_wall_ = wall_now();
     rate_step_ = engine_->step_count();
-    report_stage_changes();
+    report_stage_changes("solver");
     sample_outputs(true);
     add_event("state", "created", config_.caller);
   } catch (const std::exception& e) {
@@ -385,6 +403,27 @@ void Session::apply(Command& c) {
       apply_forcing_change(c.forcing);
       return;
     }
+    case Command::Kind::advance_stage: {
+      {
+        std::lock_guard lock(mutex_);
+        if (state_ == v1::Simulation::COMPLETED || state_ == v1::Simulation::FAILED) {
+          c.done(here({grpc::StatusCode::FAILED_PRECONDITION,
+                       config_.name + " is " + state_word(state_) + ": its stage can no longer change"}));
+          return;
+        }
+      }
+      try {
+        engine_->advance_stage(c.caller);
+      } catch (const std::invalid_argument& e) {
+        c.done(here({grpc::StatusCode::FAILED_PRECONDITION, config_.name + ": " + e.what()}));
+        return;
+      }
+      journal(entry_for("advance_stage", c.reason));
+      report_stage_changes(c.caller);
+      publish_status();
+      c.done(here());
+      return;
+    }
     case Command::Kind::query:
       if (!engine_) {
         c.frame_done({grpc::StatusCode::FAILED_PRECONDITION, config_.name + " has no engine: " + failure_reason_},
@@ -474,7 +513,7 @@ void Session::advance() {
     stop_running(v1::Simulation::FAILED, e.what());
     return;
   }
-  report_stage_changes();
+  report_stage_changes("solver");
   if (engine_->lost_particles() != lost_particles_) {
     add_event("particles_lost",
               std::to_string(engine_->lost_particles() - lost_particles_) + " particles left the domain (" +
@@ -540,12 +579,12 @@ void Session::stop_running(v1::Simulation::State state, const std::string& reaso
 
 // The engine's stage switches (stage_setup.h): to the events, the watch streams and the journal;
 // the probes then sample at the new stage's interval, from now.
-void Session::report_stage_changes() {
+void Session::report_stage_changes(const std::string& caller) {
   for (const StageChange& c : engine_->take_stage_changes()) {
     const std::string message = (c.from < 0 ? std::string("start: ") : c.from_name + " -> ") + c.to_name + ": " + c.reason;
-    add_event("stage_changed", message, "solver");
+    add_event("stage_changed", message, caller);
     v1::JournalEntry entry;
-    entry.set_caller("solver");
+    entry.set_caller(caller);
     entry.set_command("stage_changed");
     entry.set_detail(message);
     journal(std::move(entry));
@@ -606,6 +645,8 @@ void Session::publish_status() {
     status_.set_time(engine_->time());
     status_.set_step(engine_->step_count());
     status_.set_dt(engine_->last_dt());
+    status_.set_stage(std::uint32_t(engine_->stage()));
+    status_.set_stage_name(stage_names_.at(std::size_t(engine_->stage())));
     if (state_ != v1::Simulation::RUNNING) {
       status_.set_steps_per_second(0);
       rate_wall_ = now, rate_step_ = engine_->step_count();

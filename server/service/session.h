@@ -87,6 +87,9 @@ class Session {
   // applies at the next step boundary, else at the first one at or after that time.
   void update_forcing(const v1::Forcing& forcing, std::vector<std::string> mask, std::optional<double> effective_time,
                       const std::string& caller, Done done);
+  // The hand-over to the case's next stage (Engine::advance_stage) at the next step boundary;
+  // `reason` goes to the journal. FAILED_PRECONDITION when COMPLETED, FAILED or at the last stage.
+  void advance_stage(const std::string& reason, const std::string& caller, Done done);
   void query(FrameDone done);
   // From the next step boundary on, offers `tap` every frame (the first at once); forgotten when
   // the tap is destroyed.
@@ -126,7 +129,7 @@ class Session {
   void advance();  // one step while running, with everything that follows it
   void reach_targets();
   void stop_running(v1::Simulation::State state, const std::string& reason);
-  void report_stage_changes();
+  void report_stage_changes(const std::string& caller);  // `caller`: who made them (the solver, an operator)
   void sample_outputs(bool force);
   void publish_status();
   void feed_taps();
@@ -137,6 +140,7 @@ class Session {
 
   const SessionConfig config_;
   const std::vector<std::string> probe_names_;
+  const std::vector<std::string> stage_names_;  // by index; one "dynamic" for a case without stages
 
   // Shared with the RPC threads, under mutex_.
   mutable std::mutex mutex_;

@@ -315,6 +315,17 @@ grpc::ServerUnaryReactor* SimulationService::UpdateForcing(grpc::CallbackServerC
   return reactor;
 }
 
+grpc::ServerUnaryReactor* SimulationService::AdvanceStage(grpc::CallbackServerContext* context,
+                                                          const v1::AdvanceStageRequest* request,
+                                                          v1::Simulation* response) {
+  const v1::AdvanceStageRequest checked = *request;
+  return control(context, *request, request->name(), response,
+                 [checked](Session& s, const std::string& caller, Session::Done done) {
+                   if (auto status = check_advance_stage(checked); !status.ok()) return done({status, 0, 0});
+                   s.advance_stage(checked.reason(), caller, std::move(done));
+                 });
+}
+
 grpc::ServerWriteReactor<v1::FieldChunk>* SimulationService::QueryFields(grpc::CallbackServerContext* context,
                                                                          const v1::QueryFieldsRequest* request) {
   Caller caller;

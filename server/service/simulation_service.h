@@ -71,6 +71,8 @@ class SimulationService final : public v1::SimulationService::CallbackService {
   grpc::ServerUnaryReactor* UpdateForcing(grpc::CallbackServerContext* context,
                                           const v1::UpdateForcingRequest* request,
                                           v1::UpdateForcingResponse* response) override;
+  grpc::ServerUnaryReactor* AdvanceStage(grpc::CallbackServerContext* context, const v1::AdvanceStageRequest* request,
+                                         v1::Simulation* response) override;
   grpc::ServerWriteReactor<v1::FieldChunk>* QueryFields(grpc::CallbackServerContext* context,
                                                         const v1::QueryFieldsRequest* request) override;
   grpc::ServerUnaryReactor* ListProbes(grpc::CallbackServerContext* context, const v1::ListProbesRequest* request,

@@ -139,6 +139,12 @@ class Simulation:
         says the step and time at which it took effect."""
         return self.update_forcing(effective_time, rainfall__intensity=intensity)
 
+    def advance_stage(self, reason=""):
+        """Hands over to the case's next stage (ScenarioSpec.stages) at the next step boundary;
+        `reason` goes to the journal. Returns the Simulation (its status.stage and stage_name);
+        FAILED_PRECONDITION at the last stage or when the run has ended."""
+        return self.client.call("AdvanceStage", pb.AdvanceStageRequest(name=self.name, reason=reason))
+
     def query(self, *fields, phase="", box=None, stride=0):
         """Fields at one step boundary as numpy arrays: a dict with 'time', 'step', 'id',
         'phase', 'position' (N x 3) and one array per field (N, or N x components)."""
