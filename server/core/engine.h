@@ -66,6 +66,13 @@ struct StageChange {
   std::string reason;        // what ended the stage, and its figures
 };
 
+// The state of a dynamic relaxation (the geostatic stage, docs/physics.md "Geostatic start"), at
+// the engine's last step.
+struct Equilibrium {
+  double force_ratio = 0;  // largest unbalanced force on a soil particle over the mean gravity force on one
+  double max_speed = 0;    // largest soil speed (m/s)
+};
+
 // Why a run cannot go on (time step collapsed, non-finite state).
 class SimulationFailure : public std::runtime_error {
  public:
@@ -105,6 +112,13 @@ class Engine {
   virtual void advance_stage(const std::string& caller) {
     throw std::invalid_argument("the run has no further stage (requested by " + caller + ")");
   }
+
+  // Dynamic relaxation of the geostatic stage: with a coefficient in (0, 1) the soil's
+  // acceleration takes Cundall's local non-viscous damping with it and the pore water is held
+  // (pressure, saturation and seepage of the state at the call); 0 switches both off again.
+  virtual void set_relaxation(double local_damping) = 0;
+  virtual Equilibrium equilibrium() const = 0;
+  virtual void zero_velocities() = 0;  // every moving particle at rest; positions and stresses kept
 };
 
 std::unique_ptr<Engine> make_engine(const EngineConfig& config, const HostParticles& particles);

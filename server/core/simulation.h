@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include <thrust/copy.h>
+#include <thrust/fill.h>
 #include <thrust/for_each.h>
 #include <thrust/host_vector.h>
 #include <thrust/iterator/counting_iterator.h>
@@ -25,6 +26,7 @@
 #include "server/core/neighbour_list.h"
 #include "server/core/particle_view.h"
 #include "server/physics/free_surface.h"
+#include "server/physics/local_damping.h"
 #include "server/physics/soil_interaction.h"
 #include "server/physics/soil_stress_update.h"
 #include "server/physics/pore_water_state.h"
@@ -105,7 +107,7 @@ class Simulation final : public Engine {
     launch(SymplecticPredictor<Real, Dim>{view(), start_view(), grid_, Real(dt_)}, 0, moving_);
     update_soil_stress(0.5 * dt_);
     evaluate_rates(true);
-    if (has_soil_)
+    if (has_soil_ && !relaxing())  // a_s is part of the seepage, held while relaxing
       launch(SeepageInertiaFilter<Real, Dim>{view(), soil_view(), sph_.h, Real(dt_)}, grid_.water_end, moving_);
     launch(SymplecticCorrector<Real, Dim>{view(), start_view(), grid_, Real(dt_)}, 0, moving_);
     update_soil_stress(dt_);
@@ -121,6 +123,30 @@ class Simulation final : public Engine {
   const char* device_name() const override { return Backend::name; }
   void set_forcing(const HydraulicForcing& forcing) override { forcing_ = forcing; }
   HydraulicForcing forcing() const override { return forcing_; }
+
+  void set_relaxation(double local_damping) override {
+    if (!(local_damping >= 0 && local_damping < 1))
+      throw std::invalid_argument("the local damping coefficient must be in [0, 1), not " + number(local_damping));
+    local_damping_ = local_damping;
+  }
+
+  Equilibrium equilibrium() const override {
+    if (!has_soil_) return {};
+    const std::uint32_t water = grid_.water_end;
+    const EquilibriumSums<Real> sums = thrust::transform_reduce(
+        Backend::policy(), thrust::counting_iterator<std::uint32_t>(water),
+        thrust::counting_iterator<std::uint32_t>(std::uint32_t(moving_)),
+        EquilibriumOfParticle<Real, Dim>{raw(soil_materials_), raw(soil_material_), raw(porosity_), raw(saturation_),
+                                         raw(density_), raw(velocity_), raw(unbalanced_acceleration_), sph_.mass,
+                                         sph_.gravity.norm(), water_.rho0},
+        EquilibriumSums<Real>{Real(0), Real(0), Real(0), Real(0)}, CombineEquilibriumSums<Real>());
+    if (!(sums.particles > Real(0))) return {};
+    return {double(sums.max_force) / (double(sums.weight) / double(sums.particles)), double(sums.max_speed)};
+  }
+
+  void zero_velocities() override {
+    thrust::fill(Backend::policy(), velocity_.begin(), velocity_.begin() + moving_, V::Zero());
+  }
 
   void restart_clock() override {
     time_ = 0;
@@ -174,7 +200,7 @@ class Simulation final : public Engine {
     add(porosity_), add(saturation_), add(seepage_), add(skeleton_acceleration_);
     add(effective_stress_), add(start_stress_);
     add(dummy_pore_pressure_), add(dummy_stress_), add(dummy_velocity_), add(wall_), add(wall_pore_pressure_);
-    add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
+    add(unbalanced_acceleration_), add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
     return bytes + cells_.bytes() + neighbours_.bytes();
   }
 
@@ -420,21 +446,24 @@ class Simulation final : public Engine {
 
   // Right-hand sides at the current state: boundary values and states first (Eqs. 30-35, 38,
   // 39), then pressures and renormalised density gradients (Eqs. 6, 25), the seepage discharge
-  // (Eq. 27b) and its wall values (Eq. 35b), then the interactions (Eqs. 22-24, 27a, 40).
+  // (Eq. 27b) and its wall values (Eq. 35b), then the interactions (Eqs. 22-24, 27a, 40) and the
+  // soil's local damping (local_damping.h). While relaxing, the pore water is held: no pore-water
+  // gradient or seepage pass, and a zero pore-water density rate.
   void evaluate_rates(bool half_step) {
     boundary_values(half_step);
     density_gradients();
     const std::uint32_t water = grid_.water_end;
-    if (has_soil_) {
+    if (has_soil_ && !relaxing()) {
       launch(SeepageDischarge<Real, Dim>{view(), soil_view(), sph_, surface_forcing()}, water, moving_);
       launch(SolidBoundarySeepage<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
     }
     launch(WaterInteraction<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_,
                                        has_soil_ ? raw(saturation_) : nullptr},
            0, water);
-    if (has_soil_)
-      launch(SoilInteraction<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_, water_.rho0}, water,
-             moving_);
+    if (!has_soil_) return;
+    launch(SoilInteraction<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_, water_.rho0, relaxing()},
+           water, moving_);
+    launch(LocalDamping<Real, Dim>{view(), raw(unbalanced_acceleration_), Real(local_damping_)}, water, moving_);
   }
 
   // The dummy particles' water values (Eqs. 30-35a); with soil, the free surface (Eq. 38, at the
@@ -445,7 +474,9 @@ class Simulation final : public Engine {
     if (!has_soil_) return;
     const std::uint32_t water = grid_.water_end;
     if (!half_step) launch(FreeSurfaceDetection<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_}, water, moving_);
-    launch(PoreWaterState<Real, Dim>{view(), soil_view(), surface_forcing(), water_.rho0, !half_step}, water, moving_);
+    // Held pore water keeps its surface states too.
+    launch(PoreWaterState<Real, Dim>{view(), soil_view(), surface_forcing(), water_.rho0, !half_step && !relaxing()},
+           water, moving_);
     launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
   }
 
@@ -454,7 +485,7 @@ class Simulation final : public Engine {
   void density_gradients() {
     const std::uint32_t water = grid_.water_end;
     launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, water);
-    if (has_soil_)
+    if (has_soil_ && !relaxing())
       launch(RenormalisedDensityGradient<Real, Dim, true>{view(), grid_, neighbours_.view(), sph_, water_, soil_view(),
                                                           water_.rho0},
              water, moving_);
@@ -475,6 +506,9 @@ class Simulation final : public Engine {
                                        raw(start_porosity_), Real(increment)},
            grid_.water_end, moving_);
   }
+  // The geostatic stage (set_relaxation): the soil takes local damping and its pore water is held.
+  bool relaxing() const { return local_damping_ > 0; }
+
   SurfaceForcing<Real, Dim> surface_forcing() const { return SurfaceForcing<Real, Dim>::from(forcing_); }
 
   // The soil arrays, only for a case with soil particles.
@@ -525,6 +559,7 @@ class Simulation final : public Engine {
     saturation_.assign(n, Real(0));
     seepage_.assign(n, V::Zero());
     skeleton_acceleration_.assign(n, V::Zero());  // at rest
+    unbalanced_acceleration_.assign(n, Real(0));
     free_surface_.assign(n, 0);
     surface_state_.assign(n, std::uint8_t(SurfaceState::flux));
   }
@@ -613,6 +648,10 @@ class Simulation final : public Engine {
   Vector<Voigt<Real>> effective_stress_, start_stress_, dummy_stress_;
   Vector<Mat<Real, Dim>> velocity_gradient_;
   Vector<Real> porosity_rate_, plastic_strain_, start_plastic_strain_, start_porosity_;
+  // α of the local damping, 0 outside the geostatic stage; not in the checkpoint (state()): the
+  // stage orchestrator sets it again after a restore().
+  double local_damping_ = 0;
+  Vector<Real> unbalanced_acceleration_;  // per soil particle: |a| of the last evaluation before damping
   std::vector<double> initial_position_;  // host, by id: N × 3
   Vector<std::uint32_t> id_, scratch_index_;
 };

@@ -20,11 +20,14 @@
 // enters the pore water in proportion to S_w,i, the wetted fraction of the pores. A rigid
 // skeleton (Section 4.1) keeps v = 0, its stress and porosity: only the pore water flows. The
 // seepage divergence of Eq. 27a is renormalised (below); the paper's standard operator misses the
-// surface flux by half.
+// surface flux by half. In the geostatic stage (local_damping.h) the pore water is held: its
+// density rate is zero, and the seepage limit of Eq. 40c, for a diffusion not integrated then,
+// does not bound the step.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "server/core/neighbour_grid.h"
 #include "server/core/neighbour_list.h"
@@ -49,6 +52,7 @@ struct SoilInteraction {
   NeighbourListView<Real, Dim> neighbours;
   SphConstants<Real, Dim> sph;
   Real rho0;
+  bool hold_pore_water;  // the geostatic stage: dρ_w/dt = 0
 
   CASCADE_HD void operator()(std::uint32_t i) const {
     using V = Vec<Real, Dim>;
@@ -130,10 +134,11 @@ struct SoilInteraction {
     const Real pore_volumetric = rigid ? Real(0) : volumetric + saturation * interface_divergence;
     const Real pore_rate = pore_water_density_rate(rho_w_i, capacity, seepage_divergence, saturation, pore_volumetric,
                                                    Real(m.delta) * sph.h * Real(m.pore_sound_speed), diffusion);
-    p.water_density_rate[i] = prescribed ? Real(0) : pore_rate;
+    p.water_density_rate[i] = prescribed || hold_pore_water ? Real(0) : pore_rate;
     const Real conductivity = Real(m.saturated_conductivity * m.hydraulic.relative_conductivity(p_c));
-    const Real dt_sp =
-        seepage_time_step(rho0 * sph.gravity.norm(), Real(m.water_bulk_modulus), sph.h, capacity, conductivity);
+    const Real dt_sp = hold_pore_water ? std::numeric_limits<Real>::max()
+                                       : seepage_time_step(rho0 * sph.gravity.norm(), Real(m.water_bulk_modulus),
+                                                           sph.h, capacity, conductivity);
     bool finite = std::isfinite(pore_rate) && !std::isnan(dt_sp);
     if (rigid) {
       p.density_rate[i] = 0;

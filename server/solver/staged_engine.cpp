@@ -17,6 +17,7 @@ std::string text(double v) {
 
 // The pore-water stage's numbers that a checkpoint carries (EngineState::stage_values).
 constexpr const char* kNextDt = "pore_water.next_dt";
+constexpr const char* kGeostaticSteps = "geostatic.steps";
 
 }  // namespace
 
@@ -24,9 +25,6 @@ StagedEngine::StagedEngine(std::unique_ptr<Engine> dynamic, const EngineConfig& 
                            std::vector<double> forcing_times)
     : dynamic_(std::move(dynamic)), config_(config), plan_(std::move(plan)), forcing_times_(std::move(forcing_times)) {
   if (plan_.empty()) throw std::invalid_argument("a staged run needs at least one stage");
-  for (const StagePlan& stage : plan_)
-    if (stage.kind == StageKind::geostatic)
-      throw std::invalid_argument("the geostatic stage is not available in this build");
   enter(0, "the run starts");
 }
 
@@ -59,6 +57,10 @@ void StagedEngine::enter(int stage, const std::string& reason) {
   changes_.push_back(change);
   current_ = stage;
   pore_water_.reset();
+  if (next.kind == StageKind::geostatic) {
+    geostatic_steps_ = 0;
+    dynamic_->set_relaxation(next.geostatic.local_damping);
+  }
   if (next.kind == StageKind::pore_water) {
     pore_water_state_ = dynamic_->state();
     pore_water_ = std::make_unique<ImplicitPoreWater>(config_, pore_water_state_, next.pore_water);
@@ -67,10 +69,33 @@ void StagedEngine::enter(int stage, const std::string& reason) {
 
 void StagedEngine::step() {
   const StagePlan& stage = plan_[std::size_t(current_)];
+  if (stage.kind == StageKind::geostatic) return geostatic_step();
   if (stage.kind == StageKind::pore_water) pore_water_step();
   else dynamic_->step();
   if (std::size_t(current_) + 1 >= plan_.size()) return;  // the last stage runs to the end
   if (const auto reason = stage_end_reached()) enter(current_ + 1, *reason);
+}
+
+void StagedEngine::geostatic_step() {
+  const GeostaticCriteria& criteria = plan_[std::size_t(current_)].geostatic;
+  dynamic_->step();
+  ++geostatic_steps_;
+  const Equilibrium e = dynamic_->equilibrium();
+  if (e.force_ratio <= criteria.force_ratio && e.max_speed <= criteria.speed) {
+    dynamic_->set_relaxation(0.0);
+    dynamic_->zero_velocities();
+    dynamic_->restart_clock();
+    const std::string reason = "equilibrium after " + std::to_string(geostatic_steps_) +
+                               " steps of dynamic relaxation: unbalanced-force ratio " + text(e.force_ratio) +
+                               ", largest soil speed " + text(e.max_speed) + " m/s; the clock restarts at t = 0";
+    if (std::size_t(current_) + 1 < plan_.size()) enter(current_ + 1, reason);
+    return;
+  }
+  if (geostatic_steps_ >= criteria.max_steps)
+    throw SimulationFailure("the geostatic stage did not reach equilibrium in " + std::to_string(geostatic_steps_) +
+                            " steps: unbalanced-force ratio " + text(e.force_ratio) + " (limit " +
+                            text(criteria.force_ratio) + "), largest soil speed " + text(e.max_speed) +
+                            " m/s (limit " + text(criteria.speed) + ")");
 }
 
 void StagedEngine::pore_water_step() {
@@ -121,6 +146,7 @@ EngineState StagedEngine::state() const {
   EngineState s = dynamic_->state();
   s.stage = current_;
   if (pore_water_) s.stage_values[kNextDt] = pore_water_->next_dt();
+  if (plan_[std::size_t(current_)].kind == StageKind::geostatic) s.stage_values[kGeostaticSteps] = double(geostatic_steps_);
   return s;
 }
 
@@ -133,6 +159,14 @@ void StagedEngine::restore(const EngineState& s) {
   current_ = s.stage;
   changes_.clear();  // the state's history replaces this engine's
   pore_water_.reset();
+  if (plan_[std::size_t(current_)].kind == StageKind::geostatic) {
+    // The relaxation is the stage's, not the state's: on again, from the steps the state had.
+    const auto steps = s.stage_values.find(kGeostaticSteps);
+    geostatic_steps_ = steps != s.stage_values.end() ? std::uint64_t(steps->second) : 0;
+    dynamic_->set_relaxation(plan_[std::size_t(current_)].geostatic.local_damping);
+  } else {
+    dynamic_->set_relaxation(0.0);
+  }
   if (plan_[std::size_t(current_)].kind == StageKind::pore_water) {
     pore_water_state_ = dynamic_->state();
     pore_water_ = std::make_unique<ImplicitPoreWater>(config_, pore_water_state_, plan_[std::size_t(current_)].pore_water);

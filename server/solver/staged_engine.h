@@ -1,6 +1,6 @@
 // A run as a sequence of stages (ScenarioSpec.stages; docs/physics.md, "Stages"): the geostatic
-// start, the implicit pore-water stage and the dynamic (explicit u-w-p) stage, on one set of
-// particle fields. StagedEngine is an Engine: the runner and the server step it, query it,
+// start (the dynamic engine with local damping, Engine::set_relaxation), the implicit pore-water
+// stage and the dynamic (explicit u-w-p) stage, on one set of particle fields. StagedEngine is an Engine: the runner and the server step it, query it,
 // checkpoint it and steer its forcing as they do the dynamic engine, and read its stage switches
 // (Engine::take_stage_changes) to report them.
 //
@@ -62,6 +62,9 @@ class StagedEngine final : public Engine {
   void set_forcing(const HydraulicForcing& forcing) override { dynamic_->set_forcing(forcing); }
   HydraulicForcing forcing() const override { return dynamic_->forcing(); }
   void restart_clock() override { dynamic_->restart_clock(); }
+  void set_relaxation(double local_damping) override { dynamic_->set_relaxation(local_damping); }
+  Equilibrium equilibrium() const override { return dynamic_->equilibrium(); }
+  void zero_velocities() override { dynamic_->zero_velocities(); }
   EngineState state() const override;
   void restore(const EngineState& state) override;
 
@@ -78,6 +81,9 @@ class StagedEngine final : public Engine {
   void sync() const;
   void enter(int stage, const std::string& reason);
   void pore_water_step();
+  // One step of dynamic relaxation; at equilibrium the damping goes, the velocities are zeroed,
+  // the clock restarts at t = 0 and the next stage begins.
+  void geostatic_step();
   std::optional<std::string> stage_end_reached();
   double next_forcing_time() const;
 
@@ -88,6 +94,7 @@ class StagedEngine final : public Engine {
   int current_ = 0;
   std::vector<StageChange> changes_;
   bool started_ = false;
+  std::uint64_t geostatic_steps_ = 0;
   std::unique_ptr<ImplicitPoreWater> pore_water_;
   mutable EngineState pore_water_state_;  // the fields the implicit stage advances
   mutable bool unsynced_ = false; // they are ahead of the dynamic engine's
