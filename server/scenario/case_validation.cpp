@@ -54,6 +54,7 @@ class SpecChecker {
     check_probes();
     check_hydraulics();
     check_initialisation();
+    check_stages();
     check_events();
   }
 
@@ -539,6 +540,64 @@ class SpecChecker {
             "is a time series; the initialisation stage holds constant "
             "conditions: give rainfall_intensity");
     check_hydraulic_boundary("initialisation.hydraulics", init.hydraulics());
+  }
+
+  // The stages (docs/physics.md, "Stages"): a geostatic start only first, the pore-water stage only
+  // with soil, end times increasing, every number finite and of its sign.
+  void check_stages() const {
+    if (spec_.stages_size() == 0) return;
+    if (spec_.has_initialisation())
+      error("initialisation", "a case with stages starts with its first stage (e.g. geostatic), not an initialisation");
+    bool soil = false;
+    for (const auto& m : spec_.materials()) soil |= m.has_soil();
+    double last_end = -1;
+    for (int k = 0; k < spec_.stages_size(); ++k) {
+      const pb::Stage& stage = spec_.stages(k);
+      const std::string key = "stages[" + std::to_string(k) + "]";
+      if (stage.kind_case() == pb::Stage::KIND_NOT_SET)
+        error(key, "names no kind: give one of geostatic, pore_water, dynamic");
+      if (stage.has_geostatic()) {
+        if (k != 0) error(key + ".geostatic", "the geostatic start can only be the first stage");
+        if (!soil) error(key + ".geostatic", "needs soil: the case has no soil material");
+        const auto& g = stage.geostatic();
+        non_negative(key + ".geostatic.force_ratio", g.force_ratio());
+        non_negative(key + ".geostatic.speed", g.speed());
+        finite(key + ".geostatic.local_damping", g.local_damping());
+        if (!(g.local_damping() >= 0 && g.local_damping() < 1))
+          error(key + ".geostatic.local_damping", "must lie in [0, 1) (0 means 0.8), is " + number_text(g.local_damping()));
+        if (stage.end().has_time() || stage.end().has_yield_band())
+          error(key + ".end", "the geostatic stage ends at equilibrium; it takes no end criterion");
+      }
+      if (stage.has_pore_water()) {
+        if (!soil) error(key + ".pore_water", "needs soil: the case has no soil material");
+        const auto& w = stage.pore_water();
+        for (const auto& [name, value] : {std::pair<const char*, double>{"initial_dt", w.initial_dt()},
+                                          {"min_dt", w.min_dt()},
+                                          {"max_dt", w.max_dt()},
+                                          {"pressure_tolerance", w.pressure_tolerance()},
+                                          {"water_content_change", w.water_content_change()}})
+          non_negative(key + ".pore_water." + name, value);
+        if (w.max_iterations() < 0) error(key + ".pore_water.max_iterations", "must be >= 0 (0 means 20)");
+        if (w.max_dt() > 0 && w.min_dt() > w.max_dt())
+          error(key + ".pore_water.min_dt", "must not exceed max_dt (" + number_text(w.max_dt()) + " s)");
+      }
+      non_negative(key + ".output_interval", stage.output_interval());
+      non_negative(key + ".probe_interval", stage.probe_interval());
+      if (stage.end().has_time()) {
+        finite(key + ".end.time", stage.end().time());
+        if (!(stage.end().time() > last_end && stage.end().time() >= 0))
+          error(key + ".end.time", "must be >= 0 and later than the previous stage's end (is " +
+                                       number_text(stage.end().time()) + " s)");
+        last_end = stage.end().time();
+      }
+      if (stage.end().has_yield_band()) {
+        const auto& band = stage.end().yield_band();
+        if (!stage.has_pore_water()) error(key + ".end.yield_band", "ends a pore-water stage only");
+        non_negative(key + ".end.yield_band.ratio", band.ratio());
+        non_negative(key + ".end.yield_band.volume", band.volume());
+        non_negative(key + ".end.yield_band.span", band.span());
+      }
+    }
   }
 
   // The cascade's events: each criterion's thresholds, and what it needs of the case.

@@ -74,12 +74,15 @@ YieldBandMeasure measure_yield_band(const FieldFrame& frame, const YieldBandCrit
           }
         }
   }
-  // Per connected set, the bounding box of its free-surface particles; its diagonal is the span.
+  // Per connected set that reaches the free surface (the mechanism daylights), the bounding box of
+  // its members; its diagonal is the set's extent.
   std::map<std::size_t, std::array<double, 6>> boxes;
+  std::map<std::size_t, bool> daylights;
   for (std::size_t k = 0; k < yielded.size(); ++k) {
     const std::size_t i = yielded[k];
-    if (frame.free_surface.empty() || !frame.free_surface[i]) continue;
-    auto [it, fresh] = boxes.try_emplace(components.root(k));
+    const std::size_t root = components.root(k);
+    if (!frame.free_surface.empty() && frame.free_surface[i]) daylights[root] = true;
+    auto [it, fresh] = boxes.try_emplace(root);
     auto& box = it->second;
     for (int a = 0; a < 3; ++a) {
       const double x = frame.position[3 * i + a];
@@ -88,6 +91,7 @@ YieldBandMeasure measure_yield_band(const FieldFrame& frame, const YieldBandCrit
     }
   }
   for (const auto& [root, box] : boxes) {
+    if (!daylights[root]) continue;
     double d2 = 0;
     for (int a = 0; a < 3; ++a) d2 += (box[3 + a] - box[a]) * (box[3 + a] - box[a]);
     m.connected_span = std::max(m.connected_span, std::sqrt(d2));
@@ -100,8 +104,8 @@ std::string yield_band_reached(const YieldBandMeasure& m, const YieldBandCriteri
     return "yielded volume " + text(m.volume) + " > " + text(c.volume) + " (" + std::to_string(m.yielded) +
            " particles at yield ratio >= " + text(c.ratio) + ")";
   if (c.connected && m.connected_span >= c.span)
-    return "a connected yielded band joins free-surface particles " + text(m.connected_span) + " m apart (>= " +
-           text(c.span) + " m)";
+    return "a connected yielded band reaching the free surface extends " + text(m.connected_span) + " m (>= " +
+           text(c.span) + " m; " + std::to_string(m.yielded) + " particles at yield ratio >= " + text(c.ratio) + ")";
   return "";
 }
 
