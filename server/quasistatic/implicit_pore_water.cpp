@@ -1,8 +1,5 @@
 #include "server/quasistatic/implicit_pore_water.h"
 
-#include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseCore>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -71,6 +68,37 @@ ImplicitPoreWater::ImplicitPoreWater(const EngineConfig& config, const EngineSta
     porosity_.push_back(porosity[k]);
     state_.push_back(std::uint8_t(surface[k]));
   }
+  build_pattern();
+}
+
+void ImplicitPoreWater::build_pattern() {
+  const auto n = Eigen::Index(network_.soil.size());
+  std::vector<Eigen::Triplet<double>> pattern;
+  pattern.reserve(std::size_t(n) + 2 * network_.pairs.size());
+  for (Eigen::Index i = 0; i < n; ++i) pattern.emplace_back(i, i, 0.0);
+  for (const auto& pair : network_.pairs) {
+    pattern.emplace_back(pair.i, pair.j, 0.0);
+    pattern.emplace_back(pair.j, pair.i, 0.0);
+  }
+  matrix_.resize(n, n);
+  matrix_.setFromTriplets(pattern.begin(), pattern.end());
+  matrix_.makeCompressed();
+  // The position of (row, col) in the compressed column-major arrays.
+  const auto slot = [&](Eigen::Index row, Eigen::Index col) {
+    const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col];
+    const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[col + 1];
+    return std::int64_t(std::lower_bound(begin, end, int(row)) - matrix_.innerIndexPtr());
+  };
+  slots_.diagonal.resize(std::size_t(n));
+  for (Eigen::Index i = 0; i < n; ++i) slots_.diagonal[std::size_t(i)] = slot(i, i);
+  slots_.ij.clear(), slots_.ji.clear();
+  for (const auto& pair : network_.pairs) {
+    slots_.ij.push_back(slot(pair.i, pair.j));
+    slots_.ji.push_back(slot(pair.j, pair.i));
+  }
+  solver_ = std::make_unique<Preconditioned>();
+  solver_->setTolerance(1e-12);
+  solver_->analyzePattern(matrix_);
 }
 
 double ImplicitPoreWater::step(EngineState& s, const HydraulicForcing& forcing, double max_step) {
@@ -198,12 +226,8 @@ bool ImplicitPoreWater::try_step(std::vector<double>& p, const std::vector<doubl
     else if (attempt.state[i] == std::uint8_t(SurfaceState::held)) attempt.state[i] = std::uint8_t(SurfaceState::flux);
   }
 
-  Eigen::SparseMatrix<double> matrix{Eigen::Index(n), Eigen::Index(n)};
-  std::vector<Eigen::Triplet<double>> entries;
   Eigen::VectorXd rhs(n), delta(n);
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>>
-      solver;
-  solver.setTolerance(1e-12);
+  double* value = matrix_.valuePtr();
   for (attempt.iterations = 1; attempt.iterations <= settings_.max_iterations; ++attempt.iterations) {
     update_coefficients();
     net_outflow(nullptr);
@@ -214,25 +238,25 @@ bool ImplicitPoreWater::try_step(std::vector<double>& p, const std::vector<doubl
     std::vector<bool> dirichlet(n, false);
     for (std::size_t i = 0; i < n; ++i)
       if (holds_pressure(attempt.state[i])) dirichlet[i] = true, fixed_delta[i] = held_pressure(attempt.state[i]) - p[i];
-    entries.clear();
+    std::fill(value, value + matrix_.nonZeros(), 0.0);
     for (std::size_t i = 0; i < n; ++i) {
       if (dirichlet[i]) {
-        entries.emplace_back(i, i, 1.0);
+        value[slots_.diagonal[i]] = 1.0;
         rhs[Eigen::Index(i)] = fixed_delta[i];
         continue;
       }
-      const double supply = attempt.supply[i];
-      entries.emplace_back(i, i, network_.volume[i] * capacity[i] / dt);
-      rhs[Eigen::Index(i)] = -(network_.volume[i] * (theta[i] - theta_start[i]) / dt + outflow[i] - supply);
+      value[slots_.diagonal[i]] = network_.volume[i] * capacity[i] / dt;
+      rhs[Eigen::Index(i)] = -(network_.volume[i] * (theta[i] - theta_start[i]) / dt + outflow[i] - attempt.supply[i]);
     }
-    for (const auto& pair : network_.pairs) {
+    for (std::size_t q = 0; q < network_.pairs.size(); ++q) {
+      const auto& pair = network_.pairs[q];
       const double a = pair.weight * pair_conductivity(k[pair.i], k[pair.j]) / gamma;
       const bool fixed_i = dirichlet[pair.i], fixed_j = dirichlet[pair.j];
-      if (!fixed_i) entries.emplace_back(pair.i, pair.i, a);
-      if (!fixed_j) entries.emplace_back(pair.j, pair.j, a);
+      if (!fixed_i) value[slots_.diagonal[pair.i]] += a;
+      if (!fixed_j) value[slots_.diagonal[pair.j]] += a;
       if (!fixed_i && !fixed_j) {
-        entries.emplace_back(pair.i, pair.j, -a);
-        entries.emplace_back(pair.j, pair.i, -a);
+        value[slots_.ij[q]] = -a;
+        value[slots_.ji[q]] = -a;
       } else if (!fixed_i) {
         rhs[Eigen::Index(pair.i)] += a * fixed_delta[pair.j];
       } else if (!fixed_j) {
@@ -240,12 +264,15 @@ bool ImplicitPoreWater::try_step(std::vector<double>& p, const std::vector<doubl
       }
     }
     for (const auto& f : network_.fixed)
-      if (!dirichlet[f.i]) entries.emplace_back(f.i, f.i, f.weight * k[f.i] / gamma);
-    matrix.setFromTriplets(entries.begin(), entries.end());
-    solver.compute(matrix);
-    if (solver.info() != Eigen::Success) return false;
-    delta = solver.solve(rhs);
-    if (solver.info() != Eigen::Success || !delta.allFinite()) return false;
+      if (!dirichlet[f.i]) value[slots_.diagonal[f.i]] += f.weight * k[f.i] / gamma;
+    // The preconditioner of the step's first iteration serves its later ones (the conjugate
+    // gradient reads the matrix's current values; only its convergence rate depends on it).
+    if (attempt.iterations == 1) {
+      solver_->factorize(matrix_);
+      if (solver_->info() != Eigen::Success) return false;
+    }
+    delta = solver_->solve(rhs);
+    if (solver_->info() != Eigen::Success || !delta.allFinite()) return false;
 
     double largest = 0;
     for (std::size_t i = 0; i < n; ++i) {

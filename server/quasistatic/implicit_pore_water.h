@@ -28,7 +28,11 @@
 // follow: at constant total stress σ = σ' − S_w p_w I (Eq. 7), σ' changes by Δ(S_w p_w) I.
 #pragma once
 
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -83,9 +87,23 @@ class ImplicitPoreWater {
   bool try_step(std::vector<double>& p, const std::vector<double>& p_start, const HydraulicForcing& forcing, double dt,
                 Attempt& attempt);
 
+  // The system's matrix: its pattern (the diagonal and both entries of every pair) is fixed for
+  // the stage, so the incomplete Cholesky ordering is computed once; each iteration writes the
+  // values through the slots below (a Dirichlet row keeps its pattern with explicit zeros).
+  struct Slots {
+    std::vector<std::int64_t> diagonal;  // per soil particle
+    std::vector<std::int64_t> ij, ji;    // per pair
+  };
+  using Preconditioned =
+      Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>>;
+  void build_pattern();
+
   const EngineConfig& config_;
   ImplicitPoreWaterSettings settings_;
   PoreWaterNetwork network_;
+  Eigen::SparseMatrix<double> matrix_;
+  Slots slots_;
+  std::unique_ptr<Preconditioned> solver_;
   std::vector<const SoilMaterial*> material_;  // per soil particle
   std::vector<double> porosity_;
   std::vector<std::uint8_t> state_;             // SurfaceState per soil particle

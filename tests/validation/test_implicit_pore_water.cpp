@@ -22,26 +22,12 @@
 #include "tests/reference/gardner_analytic.h"
 #include "tests/reference/richards_1d.h"
 #include "tests/validation/case_run.h"
+#include "tests/validation/soil_profiles.h"
 
 namespace cascade {
 namespace {
 
 constexpr double kRho = 1000.0, kG = 9.81, kWidth = 0.2;
-
-// Layer-averaged pore pressure of the soil (layers of particles at equal z).
-std::map<double, double> layer_pressures(const FieldFrame& f) {
-  std::map<double, std::pair<double, int>> sums;
-  const auto* p = f.find("pore_pressure");
-  for (std::size_t i = 0; i < f.size(); ++i)
-    if (f.phase[i] == std::uint8_t(Phase::soil)) {
-      auto& s = sums[std::round(f.position[3 * i + 2] * 1e6) / 1e6];
-      s.first += p->values[i];
-      s.second += 1;
-    }
-  std::map<double, double> out;
-  for (const auto& [z, s] : sums) out[z] = s.first / s.second;
-  return out;
-}
 
 const StagedEngine& staged(const testing::CaseRun& run) {
   const auto* s = dynamic_cast<const StagedEngine*>(run.engine.get());
@@ -80,7 +66,7 @@ template <typename Reference>
 ProfileCheck compare_heads(const FieldFrame& frame, Reference reference_head, double t) {
   ProfileCheck c;
   double lo = 1e300, hi = -1e300;
-  for (const auto& [z, p] : layer_pressures(frame)) {
+  for (const auto& [z, p] : testing::layer_pressures(frame)) {
     const double expected = reference_head(z, t);
     lo = std::min(lo, expected), hi = std::max(hi, expected);
     if (std::fabs(p / (kRho * kG) - expected) > c.worst) c.worst = std::fabs(p / (kRho * kG) - expected), c.worst_z = z;
@@ -184,16 +170,7 @@ std::vector<ProfileCheck> van_genuchten_run(double dp) {
                        {"materials[0].soil.hydraulic={van_genuchten: {s_min: 0.1, s_max: 1.0, lambda: 0.5, p_ref: 4350}}",
                         "bodies[1].shape.box.max=[0.2, 2.0]", "domain.max=[0.2, 2.1]", "probes=[]",
                         "hydraulics.rainfall_intensity=8e-6", "end_time=86400", "dp=" + std::to_string(dp)});
-  const SoilMaterial soil = run.config.soils.at(0);
-  reference::RichardsSoil r;
-  r.porosity = 0.4;
-  r.saturated_conductivity = soil.saturated_conductivity;
-  const auto model = soil.hydraulic;
-  r.saturation = [model](double p_c) { return model.saturation(p_c); };
-  r.relative_conductivity = [model](double p_c) { return model.relative_conductivity(p_c); };
-  r.water_density = kRho;
-  r.gravity = kG;
-  r.water_bulk_modulus = soil.water_bulk_modulus;
+  const reference::RichardsSoil r = testing::richards_soil(run.config.soils.at(0), 0.4, kRho, kG);
   reference::RichardsOptions options;
   options.cells = 800;
   options.max_time_step = 60.0;
@@ -206,14 +183,8 @@ std::vector<ProfileCheck> van_genuchten_run(double dp) {
     run.run_until(hour * 3600.0);
     richards.advance_to(run.engine->time());
     const auto reference = richards.snapshot();
-    const auto head = [&](const auto& snapshot, double z) {
-      const auto& zs = snapshot.z;
-      const auto& ps = snapshot.pore_pressure;
-      if (z <= zs.front()) return ps.front() / (kRho * kG);
-      if (z >= zs.back()) return ps.back() / (kRho * kG);
-      const auto k = std::size_t(std::upper_bound(zs.begin(), zs.end(), z) - zs.begin());
-      const double w = (z - zs[k - 1]) / (zs[k] - zs[k - 1]);
-      return ((1 - w) * ps[k - 1] + w * ps[k]) / (kRho * kG);
+    const auto head = [&](const reference::RichardsSnapshot& snapshot, double z) {
+      return testing::interpolate(snapshot.z, snapshot.pore_pressure, z) / (kRho * kG);
     };
     const ProfileCheck heads = compare_heads(
         run.engine->frame(), [&](double z, double t) { return t == 0.0 ? head(initial, z) : head(reference, z); },

@@ -16,6 +16,7 @@
 
 #include "tests/reference/richards_1d.h"
 #include "tests/validation/case_run.h"
+#include "tests/validation/soil_profiles.h"
 
 namespace cascade {
 namespace {
@@ -33,44 +34,13 @@ std::vector<std::string> coarse() {
 // The Richards solution for the case's soil (Eq. 42), K_w and top flux.
 reference::Richards1d richards(const EngineConfig& config, double intensity, double p_min) {
   const SoilMaterial& soil = config.soils.at(0);
-  reference::RichardsSoil r;
-  r.porosity = 0.4;
-  r.saturated_conductivity = soil.saturated_conductivity;
-  const auto model = soil.hydraulic;
-  r.saturation = [model](double p_c) { return model.saturation(p_c); };
-  r.relative_conductivity = [model](double p_c) { return model.relative_conductivity(p_c); };
-  r.water_density = kRho;
-  r.gravity = kG;
-  r.water_bulk_modulus = soil.water_bulk_modulus;
+  const reference::RichardsSoil r = testing::richards_soil(soil, 0.4, kRho, kG);
   reference::RichardsOptions options;
   options.cells = 600;
   options.max_time_step = 30.0;
   return reference::Richards1d(r, kHeight, [](double z) { return -kRho * kG * z; },
                                reference::TopBoundary::adaptive(intensity, 0.0, p_min),
                                reference::BottomBoundary::no_flow(), options);
-}
-
-// Layer-averaged SPH pore pressure (layers of soil particles at equal z).
-std::map<double, double> layer_pressures(const FieldFrame& f) {
-  std::map<double, std::pair<double, int>> sums;
-  const auto* p = f.find("pore_pressure");
-  for (std::size_t i = 0; i < f.size(); ++i)
-    if (f.phase[i] == std::uint8_t(Phase::soil)) {
-      auto& s = sums[std::round(f.position[3 * i + 2] * 1e6) / 1e6];
-      s.first += p->values[i];
-      s.second += 1;
-    }
-  std::map<double, double> out;
-  for (const auto& [z, s] : sums) out[z] = s.first / s.second;
-  return out;
-}
-
-double interpolate(const std::vector<double>& z, const std::vector<double>& v, double at) {
-  if (at <= z.front()) return v.front();
-  if (at >= z.back()) return v.back();
-  const auto k = std::size_t(std::upper_bound(z.begin(), z.end(), at) - z.begin());
-  const double w = (at - z[k - 1]) / (z[k] - z[k - 1]);
-  return (1 - w) * v[k - 1] + w * v[k];
 }
 
 // Runs the case and its Richards solution to each time and returns the worst |p_SPH − p_ref| over
@@ -83,10 +53,10 @@ void compare(const std::string& case_file, double intensity, double p_min) {
     run.run_until(t);
     solution.advance_to(run.engine->time());
     const auto reference = solution.snapshot();
-    const auto layers = layer_pressures(run.engine->frame());
+    const auto layers = testing::layer_pressures(run.engine->frame());
     double worst = 0, worst_z = 0, largest_change = 0;
     for (const auto& [z, p] : layers) {
-      const double expected = interpolate(reference.z, reference.pore_pressure, z);
+      const double expected = testing::interpolate(reference.z, reference.pore_pressure, z);
       largest_change = std::max(largest_change, std::fabs(expected + kRho * kG * z));
       if (std::fabs(p - expected) > worst) worst = std::fabs(p - expected), worst_z = z;
     }
