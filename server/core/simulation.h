@@ -145,7 +145,7 @@ class Simulation final : public Engine {
   }
 
   void zero_velocities() override {
-    thrust::fill(Backend::policy(), velocity_.begin(), velocity_.begin() + moving_, V::Zero());
+    thrust::fill(Backend::policy(), velocity_.begin(), velocity_.begin() + moving_, V(V::Zero()));
   }
 
   void restart_clock() override {
