@@ -145,7 +145,7 @@ class Simulation final : public Engine {
   }
 
   void zero_velocities() override {
-    thrust::fill(Backend::policy(), velocity_.begin(), velocity_.begin() + moving_, V::Zero());
+    thrust::fill(Backend::policy(), velocity_.begin(), velocity_.begin() + moving_, V(V::Zero()));
   }
 
   void restart_clock() override {
@@ -200,7 +200,8 @@ class Simulation final : public Engine {
     add(porosity_), add(saturation_), add(seepage_), add(skeleton_acceleration_);
     add(effective_stress_), add(start_stress_);
     add(dummy_pore_pressure_), add(dummy_stress_), add(dummy_velocity_), add(wall_), add(wall_pore_pressure_);
-    add(unbalanced_acceleration_), add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
+    add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
+    add(unbalanced_acceleration_);
     return bytes + cells_.bytes() + neighbours_.bytes();
   }
 

@@ -1,0 +1,222 @@
+// The geostatic start (docs/physics.md, "Geostatic start"): dynamic relaxation with Cundall's
+// local damping (server/physics/local_damping.h) brings gravity and the initial stresses to
+// equilibrium, with the pore water held; then, without damping and with its velocities zeroed,
+// the explicit engine keeps the soil at rest.
+//
+// Converged: the largest unbalanced force on a soil particle at most 1e-4 of the mean gravity
+// force on one, and every soil speed at most 1e-4 m/s, within a bounded number of steps. At rest
+// afterwards: no soil speed reaches 1 mm/s over 10 s of simulated time without rain, and the
+// plastic strain κ does not change. 10 s: some hundred times the slowest elastic period of these
+// soils (0.02–0.1 s) and the time the cascade demo's rain takes to bring its slope to failure.
+//  - a saturated soil column (soil_column.h) loaded by gravity from zero effective stress: the
+//    relaxed vertical effective stress is the buoyant weight above each particle;
+//  - the demo slope (cases/cascade_demo_2d.yaml without rain, at its initial 7 kPa suction) rings
+//    above 1 mm/s without the relaxation, so the check at rest can fail;
+//  - the demo slope and Fei Tsui Road (test_fei_tsui_road.cpp's coarse dp = 0.5 m, no rain)
+//    relaxed and at rest: DISABLED. Their soil carries tension by its suction beside a vertical
+//    wall, where the compression-only soil-wall pair (wall_contact_stress, soil_momentum.h)
+//    switches at zero normal stress; the relaxation stalls there (force ratio 0.1–0.6, about
+//    1 cm/s at the wall's top; docs/physics.md, "Geostatic start", known limit). They are the
+//    acceptance tests of a contact law with a stable state there.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "server/physics/swcc/gardner.h"
+#include "tests/validation/case_run.h"
+#include "tests/validation/soil_column.h"
+
+namespace cascade {
+namespace {
+
+constexpr double kLocalDamping = 0.8;      // α: FLAC's default for static solutions (Itasca)
+constexpr double kForceRatio = 1e-4;       // converged: unbalanced force / mean gravity force
+constexpr double kRelaxedSpeed = 1e-4;     // converged: m/s
+constexpr double kRestSpeed = 1e-3;        // at rest afterwards: m/s
+constexpr double kRestDuration = 10.0;     // s
+constexpr std::uint8_t kSoil = std::uint8_t(Phase::soil);
+
+struct Relaxation {
+  std::uint64_t steps = 0;
+  Equilibrium reached;
+  bool converged = false;
+};
+
+// The geostatic stage: relaxed until both criteria hold or max_steps have run.
+Relaxation relax(Engine& engine, std::uint64_t max_steps) {
+  Relaxation r;
+  engine.set_relaxation(kLocalDamping);
+  while (r.steps < max_steps) {
+    engine.step();
+    ++r.steps;
+    r.reached = engine.equilibrium();
+    if (r.reached.force_ratio <= kForceRatio && r.reached.max_speed <= kRelaxedSpeed) {
+      r.converged = true;
+      break;
+    }
+  }
+  engine.set_relaxation(0);
+  engine.zero_velocities();
+  return r;
+}
+
+std::vector<double> plastic_strain(const FieldFrame& f) {
+  std::vector<double> kappa;
+  const auto* field = f.find("plastic_strain");
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (f.phase[i] == kSoil) kappa.push_back(field->values[i]);
+  return kappa;
+}
+
+struct Rest {
+  double max_speed = 0;     // over every step
+  double kappa_change = 0;  // largest |Δκ| of a particle
+};
+
+// The explicit engine, undamped, for `duration` from the clock's restart.
+Rest run_at_rest(Engine& engine, double duration) {
+  engine.restart_clock();
+  const std::vector<double> kappa = plastic_strain(engine.frame());
+  Rest rest;
+  while (engine.time() < duration) {
+    engine.step();
+    rest.max_speed = std::max(rest.max_speed, engine.equilibrium().max_speed);
+  }
+  const std::vector<double> after = plastic_strain(engine.frame());
+  for (std::size_t k = 0; k < kappa.size(); ++k) rest.kappa_change = std::max(rest.kappa_change, std::fabs(after[k] - kappa[k]));
+  return rest;
+}
+
+void report(const char* name, const Relaxation& r, const Rest& rest) {
+  std::printf("%s: relaxed in %llu steps: force ratio %.3e, max soil speed %.3e m/s; then %.0f s at rest: max soil "
+              "speed %.3e m/s, max |Δκ| %.3e\n",
+              name, (unsigned long long)r.steps, r.reached.force_ratio, r.reached.max_speed, kRestDuration,
+              rest.max_speed, rest.kappa_change);
+}
+
+void expect_relaxed_and_at_rest(Engine& engine, std::uint64_t max_steps, const char* name) {
+  const Relaxation r = relax(engine, max_steps);
+  const Rest rest = run_at_rest(engine, kRestDuration);
+  report(name, r, rest);
+  EXPECT_TRUE(r.converged) << "not converged in " << max_steps << " steps";
+  EXPECT_LE(r.reached.force_ratio, kForceRatio);
+  EXPECT_LE(r.reached.max_speed, kRelaxedSpeed);
+  EXPECT_LT(rest.max_speed, kRestSpeed);
+  EXPECT_EQ(rest.kappa_change, 0.0);
+}
+
+// A saturated Drucker-Prager column, hydrostatic pore pressure from its drained top, no effective
+// stress: gravity loads the skeleton from nothing. c' = 2 kPa, φ' = 30°: the oedometric loading
+// (σ'_h = ν/(1 − ν) σ'_v) stays elastic.
+constexpr double kRho = 1000.0, kG = 9.81, kBulkModulus = 2e6, kGrain = 2000.0;
+
+testing::SoilColumn unloaded_column() {
+  testing::SoilColumn c;
+  c.dp = 0.1;         // 30 layers, as test_soil_column.cpp's, at a step that makes 10 s affordable
+  c.h_over_dp = 1.5;  // as test_soil_column.cpp: at 1.3 the plain SPH stress divergence is 2.6% short
+  c.height = 3.0;
+  c.soil.grain_density = kGrain;
+  c.soil.saturated_conductivity = 1e-4;
+  c.soil.water_bulk_modulus = kBulkModulus;
+  c.soil.pore_sound_speed = 1e-3;
+  c.soil.hydraulic = HydraulicModel<double>(Gardner<double>{0.2, 1.0, 2.0, kRho * kG});
+  c.soil.mechanical.kind = SoilModel<double>::Kind::drucker_prager;
+  c.soil.mechanical.youngs_modulus = 1e7;
+  c.soil.mechanical.poisson_ratio = 0.3;
+  c.soil.mechanical.peak_cohesion = c.soil.mechanical.residual_cohesion = 2e3;
+  c.soil.mechanical.peak_friction_angle = c.soil.mechanical.residual_friction_angle = 30.0 * M_PI / 180.0;
+  const double top = c.top_layer();
+  c.pore_pressure = [=](double z) { return testing::compressible_hydrostatic(kRho, kG, kBulkModulus, top, z); };
+  c.forcing.ponding_pressure = 0;  // the drained top (Eq. 39)
+  return c;
+}
+
+TEST(GeostaticStart, SoilColumnLoadedByGravityRelaxesToItsBuoyantWeight) {
+  const auto c = unloaded_column();
+  EngineConfig config = c.config();
+  config.domain_min[1] = -4 * c.dp;  // room for the three dummy layers at this dp
+  auto engine = make_engine(config, c.particles());
+  const Relaxation r = relax(*engine, 20000);
+  EXPECT_TRUE(r.converged);
+  EXPECT_LE(r.reached.force_ratio, kForceRatio);
+  EXPECT_LE(r.reached.max_speed, kRelaxedSpeed);
+
+  // σ'_zz = σ_zz + S_w p_w (Eq. 7) with σ_zz the weight of the mixture above (Eq. 28a, S_w = 1):
+  // checked from the top down to three h above the wall, whose dummies' stress (Eq. 32a) is the
+  // extrapolation of the soil's.
+  const FieldFrame f = engine->frame();
+  const auto* stress = f.find("effective_stress");
+  const auto* pore = f.find("pore_pressure");
+  const double rho_s = (1 - c.porosity) * kGrain + c.porosity * kRho;
+  const double buoyant = (rho_s - kRho) * kG * c.height;
+  double worst = 0;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const double z = f.position[3 * i + 2];
+    if (f.phase[i] != kSoil || z < 3 * c.h_over_dp * c.dp) continue;
+    const double expected = -rho_s * kG * (c.height - z) + pore->values[i];
+    worst = std::max(worst, std::fabs(stress->values[6 * i + 2] - expected));
+  }
+  std::printf("column: max |σ'_zz − (σ_zz + p_w)| = %.1f Pa of a buoyant weight %.1f Pa at the base\n", worst, buoyant);
+  EXPECT_LT(worst, 0.02 * buoyant);  // as test_submerged_layer.cpp at its floor
+
+  const Rest rest = run_at_rest(*engine, kRestDuration);
+  report("soil column", r, rest);
+  EXPECT_LT(rest.max_speed, kRestSpeed);
+  EXPECT_EQ(rest.kappa_change, 0.0);
+}
+
+// The relaxation coefficient is not in the checkpoint: an engine restored from a state taken while
+// relaxing, and set to relax again, takes the same steps bit for bit (the held pore water's
+// density, pressure and seepage are in the state).
+TEST(GeostaticStart, RestoredWhileRelaxingGivesTheSameBits) {
+  const auto c = unloaded_column();
+  EngineConfig config = c.config();
+  config.domain_min[1] = -4 * c.dp;
+  auto first = make_engine(config, c.particles());
+  first->set_relaxation(kLocalDamping);
+  for (int k = 0; k < 100; ++k) first->step();
+  const EngineState taken = first->state();
+  for (int k = 0; k < 100; ++k) first->step();
+  auto second = make_engine(config, c.particles());
+  second->restore(taken);
+  second->set_relaxation(kLocalDamping);
+  for (int k = 0; k < 100; ++k) second->step();
+  const FieldFrame a = first->frame(), b = second->frame();
+  EXPECT_EQ(a.position, b.position);
+  for (const char* field : {"velocity", "pore_pressure", "seepage", "effective_stress"})
+    EXPECT_EQ(a.find(field)->values, b.find(field)->values) << field;
+  EXPECT_EQ(first->equilibrium().force_ratio, second->equilibrium().force_ratio);
+}
+
+// The demo's slope without rain ("dry": no water reaches it; the channel's still water stays).
+const std::vector<std::string> kDemoWithoutRain = {"hydraulics.rainfall_intensity=0"};  // it has no rain series
+
+TEST(GeostaticStart, DemoSlopeRingsWithoutRelaxation) {
+  testing::CaseRun run("cascade_demo_2d.yaml", kDemoWithoutRain);
+  double max_speed = 0;
+  while (run.engine->time() < 1.0) {
+    run.engine->step();
+    max_speed = std::max(max_speed, run.engine->equilibrium().max_speed);
+  }
+  std::printf("demo slope without relaxation: max soil speed %.3e m/s in the first second\n", max_speed);
+  EXPECT_GT(max_speed, kRestSpeed);
+}
+
+TEST(GeostaticStart, DISABLED_DemoSlopeRelaxesAndStaysAtRest) {
+  testing::CaseRun run("cascade_demo_2d.yaml", kDemoWithoutRain);
+  expect_relaxed_and_at_rest(*run.engine, 20000, "demo slope");
+}
+
+TEST(GeostaticStart, DISABLED_FeiTsuiRoadRelaxesAndStaysAtRest) {
+  testing::CaseRun run("fei_tsui_road_2d.yaml",
+                       {"dp=0.5", "materials[0].soil.saturated_conductivity=0.1", "hydraulics.rainfall_intensity=0"});
+  expect_relaxed_and_at_rest(*run.engine, 20000, "Fei Tsui Road");
+}
+
+}  // namespace
+}  // namespace cascade
+
