@@ -66,8 +66,8 @@
 namespace cascade {
 namespace {
 
-// The case's soil and layer (cases/infinite_slope_2d.yaml); set_up() checks them against the
-// engine's material.
+// The case's soil and layer (cases/infinite_slope_2d.yaml); run_case() checks the soil's against
+// the engine's material.
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kThickness = 0.5;          // H, slope-normal (m)
 constexpr double kBaseHead = -3.0;          // ψ at the bedrock at t = 0 (m)
@@ -134,6 +134,9 @@ Outcome run_case(const std::vector<std::string>& overrides) {
   // Bishop's χ = S_w of the engine's soil (Eq. 42a); the test's constants must be the case's.
   const auto saturation = [](double psi) { return psi >= 0 ? kSMax : kSMin + (kSMax - kSMin) * std::exp(kAlpha * psi); };
   EXPECT_NEAR(soil.hydraulic.saturation(0.7 * out.gamma_w), saturation(-0.7), 1e-12) << "the case's soil";
+  EXPECT_NEAR(soil.hydraulic.relative_conductivity(0.7 * out.gamma_w), std::exp(-0.7 * kAlpha), 1e-12);
+  EXPECT_EQ(soil.mechanical.peak_cohesion, kCohesion);
+  EXPECT_NEAR(soil.mechanical.peak_friction_angle, kFriction, 1e-12);
 
   // Srivastava & Yeh in ζ = n cos β (header).
   reference::GardnerColumn column;
