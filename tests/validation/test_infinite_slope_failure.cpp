@@ -29,7 +29,9 @@
 //     the geostatic stage (σ'_xx ≈ σ'_yy ≈ 0.75 σ'_nn measured) has a larger deviator and reaches
 //     the cone at Lu & Godt's FS ≈ 1.75, 0.76 h into the rain against 6.6 h. Even at K0 = 1
 //     (pure shear on the slope plane) the cone's friction 3α_φ = tan φ'/sqrt(1 + 4/3 tan²φ') is 17%
-//     below tan φ' at 30°. So the 10% check is StageSwitchAgainstLuGodtKnownFailure. What the model
+//     below tan φ' at 30°: the model's own steady sliding (simple shear at constant volume,
+//     dilatancy 0) has c = k_c, tan φ = 3α_φ, and Lu & Godt's expression with those gives 5.30 h,
+//     −20% (printed). So the 10% check is StageSwitchAgainstLuGodtKnownFailure. What the model
 //     does is checked against the same heads: the first time Eqs. 10a/11 reach yield in any particle
 //     layer, from the geostatic stresses the test measures shifted by Bishop's Δ(S_w p_w) I (the
 //     implicit stage's update) with Srivastava & Yeh's heads, within the same 10%.
@@ -96,6 +98,7 @@ struct Outcome {
   double head_spread = 0;                               // the largest max − min of ψ within a layer (m)
   double lu_godt_time = -1, lu_godt_depth = 0, lu_godt_se_time = -1;
   double switch_factor_of_safety = 0;                   // Lu & Godt's minimum over depth at the switch
+  double simple_shear_time = -1;                        // the same with the model's simple-shear strength
   bool reference_valid = false;
   double drucker_prager_time = -1;                      // Eqs. 10a/11 with the analytic heads
   double seepage_dt = 0, first_dynamic_dt = 0, largest_dynamic_dt = 0, cfl = 0;
@@ -239,33 +242,45 @@ Outcome run_case(const std::vector<std::string>& overrides) {
 
   // Lu & Godt with Srivastava & Yeh's heads: d is the vertical depth (infinite_slope.h), the
   // slope-normal height above the bedrock n = H − d cos β.
-  const auto lu_godt = [&](std::function<double(double)> chi) {
+  const reference::HeadField field = [&](double d, double t) { return head_at(kThickness - d * cb, t); };
+  const auto stability = [&](std::function<double(double)> chi, double cohesion, double friction) {
     reference::InfiniteSlope slope;
     slope.slope_angle = out.beta;
-    slope.cohesion = kCohesion;
-    slope.friction_angle = kFriction;
+    slope.cohesion = cohesion;
+    slope.friction_angle = friction;
     slope.unit_weight_profile = [&](double d) {
       return g * ((1 - kPorosity) * kGrainDensity +
                   saturation(head_at(kThickness - d * cb, 0.0)) * kPorosity * config.water_density);
     };
     slope.effective_saturation = std::move(chi);
     slope.water_unit_weight = out.gamma_w;
-    reference::SlopeSearchOptions options;
-    options.time_samples = 400;
-    const reference::InfiniteSlopeStability stability(slope);
-    const reference::HeadField field = [&](double d, double t) { return head_at(kThickness - d * cb, t); };
-    out.switch_factor_of_safety =
-        stability.minimum_over_depth(field, out.switch_time, 1e-3, kThickness / cb).factor_of_safety;
-    return stability.critical_depth_and_time(field, 1e-3, kThickness / cb, 0.0, 2 * 86400.0, options);
+    return reference::InfiniteSlopeStability(slope);
   };
-  const reference::SlopeCriticalState effective_saturation =
-      lu_godt(reference::gardner_effective_saturation(kAlpha));
-  if (effective_saturation.found) out.lu_godt_se_time = effective_saturation.time;
-  const reference::SlopeCriticalState bishop = lu_godt(saturation);
+  reference::SlopeSearchOptions options;
+  options.time_samples = 400;
+  const auto critical = [&](const reference::InfiniteSlopeStability& s) {
+    return s.critical_depth_and_time(field, 1e-3, kThickness / cb, 0.0, 2 * 86400.0, options);
+  };
+  const reference::InfiniteSlopeStability lu_godt = stability(saturation, kCohesion, kFriction);
+  out.switch_factor_of_safety = lu_godt.minimum_over_depth(field, out.switch_time, 1e-3, kThickness / cb).factor_of_safety;
+  const reference::SlopeCriticalState bishop = critical(lu_godt);
   if (bishop.found) {
     out.lu_godt_time = bishop.time;
     out.lu_godt_depth = bishop.depth;
     out.reference_valid = heads.valid(0.0, bishop.time) && heads.valid(kThickness * cb, bishop.time);
+  }
+  const reference::SlopeCriticalState effective_saturation =
+      critical(stability(reference::gardner_effective_saturation(kAlpha), kCohesion, kFriction));
+  if (effective_saturation.found) out.lu_godt_se_time = effective_saturation.time;
+  // The model's own sliding strength on the slope plane: steady simple shear at constant volume
+  // (dilatancy 0) needs s_xx = s_yy = 0 (ε^p ∥ s with ε_xx = ε_yy = 0), so σ'_xx = σ'_yy = σ'_nn
+  // and Eq. 10a gives τ = k_c + 3α_φ σ'_n (compression positive): Lu & Godt's expression with
+  // c = k_c and tan φ = 3α_φ of Eq. 11 (ERRATA.md).
+  {
+    const double t = std::tan(kFriction), root = std::sqrt(9 + 12 * t * t);
+    const reference::SlopeCriticalState sliding =
+        critical(stability(saturation, 3 * kCohesion / root, std::atan(3 * t / root)));
+    if (sliding.found) out.simple_shear_time = sliding.time;
   }
 
   // Eqs. 10a and 11 (ERRATA.md) in each particle layer: the measured geostatic stress, shifted by
@@ -309,9 +324,11 @@ Outcome run_case(const std::vector<std::string>& overrides) {
               "within a layer %.3g mm\n",
               1e3 * out.worst_head, 100 * out.worst_head / out.head_range, out.head_range, 1e3 * out.head_spread);
   std::printf("  Lu & Godt FS = 1 (chi = S_w): %.0f s (%.2f h) at vertical depth %.3f m (normal %.3f m), heads valid %d; "
-              "with chi = S_e: %.0f s (%.2f h); FS at the switch %.3f\n",
+              "with chi = S_e: %.0f s (%.2f h); FS at the switch %.3f; with the model's simple-shear strength (k_c, "
+              "3 alpha_phi): %.0f s (%.2f h)\n",
               out.lu_godt_time, out.lu_godt_time / 3600, out.lu_godt_depth, out.lu_godt_depth * cb, int(out.reference_valid),
-              out.lu_godt_se_time, out.lu_godt_se_time / 3600, out.switch_factor_of_safety);
+              out.lu_godt_se_time, out.lu_godt_se_time / 3600, out.switch_factor_of_safety, out.simple_shear_time,
+              out.simple_shear_time / 3600);
   std::printf("  Drucker-Prager yield from the measured geostatic stress and SY heads: %.0f s (%.2f h), first in the "
               "layer at n = %.4f m; model switch %+.1f%% of it, %+.1f%% of Lu & Godt\n",
               out.drucker_prager_time, out.drucker_prager_time / 3600, out.drucker_prager_n,
