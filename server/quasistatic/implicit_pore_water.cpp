@@ -201,7 +201,8 @@ bool ImplicitPoreWater::try_step(std::vector<double>& p, const std::vector<doubl
     std::fill(outflow.begin(), outflow.end(), 0.0);
     for (std::size_t i = 0; i < n; ++i) head[i] = p[i] / gamma + network_.elevation[i];
     for (const auto& pair : network_.pairs) {
-      const double flux = pair.weight * pair_conductivity(k[pair.i], k[pair.j]) * (head[pair.i] - head[pair.j]);
+      const double flux =
+          pair.weight * pair_conductivity(k[pair.i], k[pair.j]) * ((p[pair.i] - p[pair.j]) / gamma + pair.rise);
       outflow[pair.i] += flux, outflow[pair.j] -= flux;
     }
     for (const auto& f : network_.fixed) {

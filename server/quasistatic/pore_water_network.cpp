@@ -77,12 +77,17 @@ class NetworkBuilder {
       const std::uint32_t i = std::uint32_t(soil_index[k]);
       for_each_neighbour(k, [&](std::size_t j, const V& x_ij, double r2) {
         const double weight = scale * pair_weight(n.volume[i], mass / density[j], x_ij, r2);
+        // j's periodic image next to i: heads differ by the elevation along the pair, not by the
+        // elevation between the stored positions (which on a periodic axis along which gravity
+        // has a component, a tilted infinite slope, differ by the period's drop).
+        const V image = position_[k] - x_ij;
         switch (Phase(phase[j])) {
           case Phase::soil:
-            if (soil_index[j] > std::int64_t(i)) n.pairs.push_back({i, std::uint32_t(soil_index[j]), weight});
+            if (soil_index[j] > std::int64_t(i))
+              n.pairs.push_back({i, std::uint32_t(soil_index[j]), weight, elevation(x_ij)});
             break;
           case Phase::water:
-            n.fixed.push_back({i, weight, pressure[j] / n.gamma_w + elevation(position_[j]), false});
+            n.fixed.push_back({i, weight, pressure[j] / n.gamma_w + elevation(image), false});
             break;
           case Phase::boundary: {
             if (wall[j] == 0) break;  // impermeable: no flux
@@ -93,7 +98,7 @@ class NetworkBuilder {
             const double gap = to_ghost.norm();
             if (!(gap > 0)) break;  // no ghost node: no face to hold the pressure at
             const V normal = to_ghost / gap;  // out of the wall, into the soil
-            const V face = position_[j] + 0.5 * to_ghost;
+            const V face = image + 0.5 * to_ghost;
             const double d_b = 0.5 * gap;
             const double d_i = std::max(displacement(position_[k], face).dot(normal), 0.5 * config_.dp);
             n.fixed.push_back({i, weight * (1.0 + d_b / d_i),
@@ -108,6 +113,7 @@ class NetworkBuilder {
   }
 
  private:
+  // The elevation of a position, or the rise along a displacement (linear in it).
   double elevation(const V& x) const { return -g_.dot(x) / g_.norm(); }
 
   // G_ij of the header (pore_water_network.h).

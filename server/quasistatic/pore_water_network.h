@@ -2,7 +2,9 @@
 // with which, and how easily (docs/physics.md, "Implicit pore-water stage").
 //
 // Between two soil particles the flux into i is G_ij K̄_ij (H_j − H_i), H = p_w/γ_w + z the
-// hydraulic head (z the elevation against gravity, γ_w = ρ_w0 |g|), K̄_ij = (K_i + K_j)/2 and
+// hydraulic head (z the elevation against gravity, γ_w = ρ_w0 |g|; H_j − H_i with z_j − z_i along
+// the pair, which across a periodic axis is not the difference of the stored positions' z when
+// gravity has a component along it, e.g. a tilted infinite slope), K̄_ij = (K_i + K_j)/2 and
 //
 //     G_ij = 2 V_i V_j (−x_ij·∇_i W_ij) / (|x_ij|² + η²),    η² = 0.01 h²,
 //
@@ -36,11 +38,12 @@ struct PoreWaterNetwork {
   struct Pair {
     std::uint32_t i, j;  // indices into `soil` (i < j)
     double weight;       // G_ij (m^(2d−2))
+    double rise;         // z_i − z_j along the pair, x_ij the minimum image on periodic axes (m)
   };
   struct FixedPair {
     std::uint32_t i;     // index into `soil`
     double weight;       // G_ib times the extrapolation factor (1 + d_b/d_i) for a wall
-    double head;         // H of the fixed side (m)
+    double head;         // H of the fixed side (m), at its periodic image next to i
     bool wall;           // a drained wall's dummy (else free water)
   };
 

@@ -259,10 +259,15 @@ class SpecChecker {
   // The initial state of a soil body: pore pressure (p_w > −K_w everywhere: the water-table case
   // is checked by the particle builder, which knows the body's extent) and K0.
   void check_soil_initial(const std::string& key, const pb::InitialState& initial, const pb::Material& m) const {
-    for (int a = 0; a < dims_; ++a)
-      if ((a + 1 < dims_ && spec_.gravity(a) != 0) || (a + 1 == dims_ && spec_.gravity(a) > 0))
-        error("gravity", "must point along -z (or be zero) in a case with soil: the initial pore pressure and "
-                         "geostatic stress of " + key.substr(0, key.find(".initial")) + " are measured along z");
+    // A horizontal component tilts the layers: gravity |g| (sin β, −cos β) makes a layer along x an
+    // infinite slope of angle β (cases/infinite_slope_2d.yaml); the builder then measures the
+    // initial state along z with gravity's z component, the slope-normal one.
+    bool horizontal = false;
+    const double vertical = spec_.gravity_size() == dims_ ? spec_.gravity(dims_ - 1) : 0.0;
+    for (int a = 0; a + 1 < dims_ && a < spec_.gravity_size(); ++a) horizontal = horizontal || spec_.gravity(a) != 0;
+    if (vertical > 0 || (horizontal && !(vertical < 0)))
+      error("gravity", "must have a downward z component (or be zero) in a case with soil: the initial pore pressure "
+                       "and geostatic stress of " + key.substr(0, key.find(".initial")) + " are measured along z");
     if (initial.hydrostatic())
       error(key + ".hydrostatic",
             "is for water bodies; a soil body starts from initial.water_table or initial.suction");

@@ -381,7 +381,10 @@ void Builder::set_soil_state(int body) {
   const v1::InitialState& initial = spec_.bodies(body).initial();
   const SoilMaterial& soil = soils_[soil_[body]];
   const double porosity = spec_.materials(material_[body]).soil().porosity();
-  const double rho_w0 = reference_water_density(spec_), g = gravity_magnitude(spec_);
+  // Along z with gravity's z component: |g| for vertical gravity, |g| cos β for gravity tilted by
+  // β (an infinite slope along x, scenario.proto InitialState; the slope's shear stress is left to
+  // the geostatic stage).
+  const double rho_w0 = reference_water_density(spec_), g = spec_.gravity_size() == dims_ ? -spec_.gravity(dims_ - 1) : 0.0;
   const double k0 = earth_pressure_coefficient(soil, initial);
   const int z = dims_ - 1;
   const auto level = [&](std::size_t n, int c) { return std::llround(p.position[n * dims_ + c] / dp_ - 0.5); };

@@ -929,7 +929,8 @@ TEST(SoilErrors, InitialState) {
                {"bodies[1].initial.k0", 27, "must not be negative"});
   expect_error(soil_with_line(27, "    initial: {hydrostatic: true}"),
                {"bodies[1].initial.hydrostatic", 27, "is for water bodies"});
-  expect_error(soil_with_line(9, "gravity: [1, -9.81]"), {"gravity", 9, "must point along -z"});
+  expect_error(soil_with_line(9, "gravity: [1, 0]"), {"gravity", 9, "must have a downward z component"});
+  expect_error(soil_with_line(9, "gravity: [0, 9.81]"), {"gravity", 9, "must have a downward z component"});
   // A rigid soil does not move.
   std::vector<std::string> lines = kSoilBase;
   lines[17] = "      rigid: true";
