@@ -159,7 +159,6 @@ double ImplicitPoreWater::step(EngineState& s, const HydraulicForcing& forcing, 
   balance_.rain += d.rain, balance_.infiltration += d.infiltration, balance_.runoff += d.runoff;
   balance_.exfiltration += d.exfiltration, balance_.walls += d.walls, balance_.free_water += d.free_water;
   balance_.storage += d.storage;
-  last_iterations_ = attempt.iterations;
 
   // The next step: scaled towards the aimed change of water content, at most 1.5 times longer,
   // shorter after a step that needed many iterations (a step cut short by max_step leaves the

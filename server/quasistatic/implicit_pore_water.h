@@ -77,10 +77,8 @@ class ImplicitPoreWater {
   double step(EngineState& state, const HydraulicForcing& forcing, double max_step);
 
   const WaterBalance& balance() const { return balance_; }
-  int last_iterations() const { return last_iterations_; }
   double next_dt() const { return dt_; }
   void set_next_dt(double dt) { dt_ = dt; }
-  const PoreWaterNetwork& network() const { return network_; }
 
  private:
   struct Attempt;
@@ -109,7 +107,6 @@ class ImplicitPoreWater {
   std::vector<std::uint8_t> state_;             // SurfaceState per soil particle
   WaterBalance balance_;
   double dt_;
-  int last_iterations_ = 0;
 };
 
 }  // namespace cascade

@@ -72,7 +72,6 @@ class StagedEngine final : public Engine {
   std::vector<StageChange> take_stage_changes() override;
   void advance_stage(const std::string& caller) override;
 
-  const StagePlan& plan(int stage) const { return plan_.at(std::size_t(stage)); }
   // The implicit stage's water balance since it began (zeros outside it).
   WaterBalance water_balance() const { return pore_water_ ? pore_water_->balance() : WaterBalance{}; }
 
