@@ -227,6 +227,8 @@ bool ImplicitPoreWater::try_step(std::vector<double>& p, const std::vector<doubl
   }
 
   Eigen::VectorXd rhs(n), delta(n);
+  std::vector<double> fixed_delta(n);
+  std::vector<bool> dirichlet(n);
   double* value = matrix_.valuePtr();
   for (attempt.iterations = 1; attempt.iterations <= settings_.max_iterations; ++attempt.iterations) {
     update_coefficients();
@@ -234,8 +236,8 @@ bool ImplicitPoreWater::try_step(std::vector<double>& p, const std::vector<doubl
     // The increment δ = p^{m+1} − p^m of the modified Picard iteration:
     //   (V C/Δt) δ_i + Σ_j a_ij (δ_i − δ_j) + Σ_b a_ib δ_i = −R_i,   a = G K/γ_w,
     //   R_i = V (Θ_i − Θ_i^n)/Δt + outflow_i − Q_i; a Dirichlet particle's δ is known.
-    std::vector<double> fixed_delta(n, 0.0);
-    std::vector<bool> dirichlet(n, false);
+    std::fill(fixed_delta.begin(), fixed_delta.end(), 0.0);
+    std::fill(dirichlet.begin(), dirichlet.end(), false);
     for (std::size_t i = 0; i < n; ++i)
       if (holds_pressure(attempt.state[i])) dirichlet[i] = true, fixed_delta[i] = held_pressure(attempt.state[i]) - p[i];
     std::fill(value, value + matrix_.nonZeros(), 0.0);

@@ -316,6 +316,18 @@ void Session::initialise() {
   publish_status();
 }
 
+// A COMPLETED or FAILED simulation refuses a command that would change it: FAILED_PRECONDITION.
+bool Session::refused_when_ended(const Done& done, const char* what) {
+  v1::Simulation::State state;
+  {
+    std::lock_guard lock(mutex_);
+    state = state_;
+  }
+  if (state != v1::Simulation::COMPLETED && state != v1::Simulation::FAILED) return false;
+  done(here({grpc::StatusCode::FAILED_PRECONDITION, config_.name + " is " + state_word(state) + ": " + what}));
+  return true;
+}
+
 bool Session::transition(const Done& done, std::initializer_list<v1::Simulation::State> from, const char* command) {
   v1::Simulation::State state;
   {
@@ -386,14 +398,7 @@ void Session::apply(Command& c) {
       return;
     }
     case Command::Kind::update_forcing: {
-      {
-        std::lock_guard lock(mutex_);
-        if (state_ == v1::Simulation::COMPLETED || state_ == v1::Simulation::FAILED) {
-          c.done(here({grpc::StatusCode::FAILED_PRECONDITION,
-                       config_.name + " is " + state_word(state_) + ": its forcing can no longer change"}));
-          return;
-        }
-      }
+      if (refused_when_ended(c.done, "its forcing can no longer change")) return;
       c.forcing.done = std::move(c.done);
       if (c.effective_time && *c.effective_time > engine_->time()) {
         c.forcing.effective_time = *c.effective_time;
@@ -404,14 +409,7 @@ void Session::apply(Command& c) {
       return;
     }
     case Command::Kind::advance_stage: {
-      {
-        std::lock_guard lock(mutex_);
-        if (state_ == v1::Simulation::COMPLETED || state_ == v1::Simulation::FAILED) {
-          c.done(here({grpc::StatusCode::FAILED_PRECONDITION,
-                       config_.name + " is " + state_word(state_) + ": its stage can no longer change"}));
-          return;
-        }
-      }
+      if (refused_when_ended(c.done, "its stage can no longer change")) return;
       try {
         engine_->advance_stage(c.caller);
       } catch (const std::invalid_argument& e) {

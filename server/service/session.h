@@ -135,6 +135,7 @@ class Session {
   void feed_taps();
   void add_event(const std::string& kind, const std::string& message, const std::string& caller);
   void journal(v1::JournalEntry entry);
+  bool refused_when_ended(const Done& done, const char* what);
   bool transition(const Done& done, std::initializer_list<v1::Simulation::State> from, const char* command);
   Outcome here(grpc::Status status = grpc::Status::OK) const;
 
