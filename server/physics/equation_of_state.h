@@ -9,6 +9,14 @@
 
 namespace cascade {
 
+// The lowest gauge pressure free water takes: at its vapour pressure it cavitates and carries no
+// more tension (2.34 kPa absolute at 20 °C, Wagner & Pruss 2002's IAPWS-95 tables; gauge against
+// the standard atmosphere, 101.325 kPa, the pore-air pressure p_a = 0 of Section 2.2). Water in SPH
+// has no other bound below: a particle torn from its neighbours where a slide entered the channel
+// reached −6 MPa (ρ_w = 130 kg/m³) and was pulled through the floor (cases/cascade_storm_2d.yaml,
+// measured with an earlier form of the soil-wall contact).
+inline constexpr double kCavitationPressure = 2339.0 - 101325.0;  // Pa, gauge
+
 template <typename Real>
 struct WaterConstants {
   Real rho0;    // ρ_w0
@@ -17,8 +25,11 @@ struct WaterConstants {
   Real alpha;   // α_μ,w of the artificial viscosity (Eq. 23b)
 
   // Eq. 6: p_w = K_w/ρ_w0 (ρ_w − ρ_w0) with K_w = ρ_w0 c_w0², the bulk modulus that the
-  // artificial sound speed stands for.
-  CASCADE_HD Real pressure(Real water_density) const { return c0 * c0 * (water_density - rho0); }
+  // artificial sound speed stands for, down to the cavitation pressure.
+  CASCADE_HD Real pressure(Real water_density) const {
+    const Real p = c0 * c0 * (water_density - rho0);
+    return p > Real(kCavitationPressure) ? p : Real(kCavitationPressure);
+  }
   CASCADE_HD Real density(Real pressure) const { return rho0 + pressure / (c0 * c0); }
 };
 

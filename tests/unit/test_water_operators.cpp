@@ -155,5 +155,14 @@ TEST(EquationOfState, LinearWithArtificialSoundSpeed) {
   EXPECT_NEAR(artificial_sound_speed(0.1, 1000 * 9.81 * 2.0, 1000), 10 * std::sqrt(9.81 * 2.0), 1e-12);
 }
 
+// Free water cavitates at its vapour pressure: no gauge pressure below 2.339 − 101.325 kPa, however
+// far it expands; above that the linear law is unchanged.
+TEST(EquationOfState, CavitatesAtTheVapourPressure) {
+  const WaterConstants<double> w{1000.0, 83.0, 0.1, 0.01};
+  EXPECT_DOUBLE_EQ(w.pressure(130.0), -98986.0);                      // −6 MPa by the linear law
+  EXPECT_DOUBLE_EQ(w.pressure(990.0), 83.0 * 83.0 * (990.0 - 1000.0));  // −68.9 kPa: above it
+  EXPECT_DOUBLE_EQ(w.pressure(985.0), -98986.0);                      // −103 kPa by the linear law
+}
+
 }  // namespace
 }  // namespace cascade
