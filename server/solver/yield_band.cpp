@@ -74,15 +74,15 @@ YieldBandMeasure measure_yield_band(const FieldFrame& frame, const YieldBandCrit
           }
         }
   }
-  // Per connected set that reaches the free surface (the mechanism daylights), the bounding box of
-  // its members; its diagonal is the set's extent.
+  // Per connected set, the bounding box of its free-surface members: a set that reaches the free
+  // surface at two points that far apart cuts the soil from surface to surface (a slip surface
+  // that daylights at both ends); its diagonal is the set's span. A set that reaches the surface
+  // at one place only (a band along the bedrock from the toe) has a span of about dp.
   std::map<std::size_t, std::array<double, 6>> boxes;
-  std::map<std::size_t, bool> daylights;
   for (std::size_t k = 0; k < yielded.size(); ++k) {
     const std::size_t i = yielded[k];
-    const std::size_t root = components.root(k);
-    if (!frame.free_surface.empty() && frame.free_surface[i]) daylights[root] = true;
-    auto [it, fresh] = boxes.try_emplace(root);
+    if (frame.free_surface.empty() || !frame.free_surface[i]) continue;
+    auto [it, fresh] = boxes.try_emplace(components.root(k));
     auto& box = it->second;
     for (int a = 0; a < 3; ++a) {
       const double x = frame.position[3 * i + a];
@@ -91,7 +91,6 @@ YieldBandMeasure measure_yield_band(const FieldFrame& frame, const YieldBandCrit
     }
   }
   for (const auto& [root, box] : boxes) {
-    if (!daylights[root]) continue;
     double d2 = 0;
     for (int a = 0; a < 3; ++a) d2 += (box[3 + a] - box[a]) * (box[3 + a] - box[a]);
     m.connected_span = std::max(m.connected_span, std::sqrt(d2));
@@ -104,7 +103,7 @@ std::string yield_band_reached(const YieldBandMeasure& m, const YieldBandCriteri
     return "yielded volume " + text(m.volume) + " > " + text(c.volume) + " (" + std::to_string(m.yielded) +
            " particles at yield ratio >= " + text(c.ratio) + ")";
   if (c.connected && m.connected_span >= c.span)
-    return "a connected yielded band reaching the free surface extends " + text(m.connected_span) + " m (>= " +
+    return "a connected yielded band meets the free surface at points " + text(m.connected_span) + " m apart (>= " +
            text(c.span) + " m; " + std::to_string(m.yielded) + " particles at yield ratio >= " + text(c.ratio) + ")";
   return "";
 }

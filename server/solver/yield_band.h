@@ -13,7 +13,7 @@ namespace cascade {
 struct YieldBandCriterion {
   double ratio = 1.0;      // a soil particle counts as yielded at yield_ratio >= ratio
   double volume = 0;       // > 0: the yielded volume (m^d, dp^d per particle) exceeds it
-  bool connected = false;  // a connected set of yielded particles that reaches the free surface extends `span`
+  bool connected = false;  // a connected set of yielded particles meets the free surface at points `span` apart
   double span = 0;         // m
   bool active() const { return volume > 0 || connected; }
 };
@@ -21,8 +21,10 @@ struct YieldBandCriterion {
 struct YieldBandMeasure {
   std::size_t yielded = 0;     // soil particles at or above the ratio
   double volume = 0;           // their volume (m^d)
-  double connected_span = 0;   // the largest extent (bounding-box diagonal) of a connected yielded
-                               // set with a free-surface member (m); particles within 1.5 dp connect
+  double connected_span = 0;   // the largest extent (bounding-box diagonal) of the free-surface
+                               // members of one connected yielded set (m): the band cuts the soil
+                               // from surface to surface over that span; particles within 1.5 dp
+                               // connect
 };
 
 YieldBandMeasure measure_yield_band(const FieldFrame& frame, const YieldBandCriterion& criterion, double dp);
