@@ -570,7 +570,7 @@ class SpecChecker {
         finite(key + ".geostatic.local_damping", g.local_damping());
         if (!(g.local_damping() >= 0 && g.local_damping() < 1))
           error(key + ".geostatic.local_damping", "must lie in [0, 1) (0 means 0.8), is " + number_text(g.local_damping()));
-        if (stage.end().has_time() || stage.end().has_yield_band())
+        if (stage.end().has_time() || stage.end().has_yield_band() || stage.end().has_motion())
           error(key + ".end", "the geostatic stage ends at equilibrium; it takes no end criterion");
       }
       if (stage.has_pore_water()) {
@@ -601,6 +601,13 @@ class SpecChecker {
         non_negative(key + ".end.yield_band.ratio", band.ratio());
         non_negative(key + ".end.yield_band.volume", band.volume());
         non_negative(key + ".end.yield_band.span", band.span());
+      }
+      if (stage.end().has_motion()) {
+        const auto& m = stage.end().motion();
+        if (!stage.has_pore_water()) error(key + ".end.motion", "ends a pore-water stage only");
+        non_negative(key + ".end.motion.speed", m.speed());
+        non_negative(key + ".end.motion.duration", m.duration());
+        non_negative(key + ".end.motion.interval", m.interval());
       }
     }
   }

@@ -44,6 +44,13 @@ StagePlan stage_plan(const v1::Stage& stage) {
   plan.yield_band.volume = band.volume();
   plan.yield_band.connected = band.connected();
   plan.yield_band.span = band.span();
+  if (stage.end().has_motion()) {
+    const auto& m = stage.end().motion();
+    plan.motion = MotionTrial{};
+    if (m.speed() > 0) plan.motion->speed = m.speed();
+    if (m.duration() > 0) plan.motion->duration = m.duration();
+    plan.motion->interval = m.interval();
+  }
   return plan;
 }
 

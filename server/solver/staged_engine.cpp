@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "server/core/types.h"
+
 namespace cascade {
 
 namespace {
@@ -18,6 +20,8 @@ std::string text(double v) {
 // The pore-water stage's numbers that a checkpoint carries (EngineState::stage_values).
 constexpr const char* kNextDt = "pore_water.next_dt";
 constexpr const char* kGeostaticSteps = "geostatic.steps";
+constexpr const char* kLastTrialTime = "motion.last_trial_time";
+constexpr const char* kTrials = "motion.trials";
 
 }  // namespace
 
@@ -57,6 +61,8 @@ void StagedEngine::enter(int stage, const std::string& reason) {
   changes_.push_back(change);
   current_ = stage;
   pore_water_.reset();
+  last_trial_time_ = -std::numeric_limits<double>::infinity();
+  trials_ = 0;
   if (next.kind == StageKind::geostatic) {
     geostatic_steps_ = 0;
     dynamic_->set_relaxation(next.geostatic.local_damping);
@@ -118,7 +124,31 @@ std::optional<std::string> StagedEngine::stage_end_reached() {
         yield_band_reached(measure_yield_band(frame(), stage.yield_band, config_.dp), stage.yield_band);
     if (!reached.empty()) return reached;
   }
+  if (stage.kind == StageKind::pore_water && stage.motion &&
+      time() >= last_trial_time_ + stage.motion->interval * (1 - 1e-12))
+    return slope_moves(*stage.motion);
   return std::nullopt;
+}
+
+std::optional<std::string> StagedEngine::slope_moves(const MotionTrial& trial) {
+  const FieldFrame f = frame();  // synced: the dynamic engine holds the stage's state
+  const auto* ratio = f.find("yield_ratio");
+  std::size_t yielded = 0;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (f.phase[i] == std::uint8_t(Phase::soil) && ratio && ratio->values[i] >= 1.0) ++yielded;
+  if (yielded == 0) return std::nullopt;  // nothing at yield: no mechanism, no trial
+  last_trial_time_ = time();
+  ++trials_;
+  const EngineState before = dynamic_->state();
+  while (dynamic_->time() < before.time + trial.duration) dynamic_->step();
+  const double speed = dynamic_->equilibrium().max_speed;
+  const std::uint64_t trial_steps = dynamic_->step_count() - before.steps;
+  dynamic_->restore(before);
+  if (!(speed >= trial.speed)) return std::nullopt;
+  return "the slope moves: let go from this state, the dynamic engine brought soil to " + text(speed) + " m/s in " +
+         text(trial.duration) + " s (" + std::to_string(trial_steps) + " steps; >= " + text(trial.speed) +
+         " m/s); " + std::to_string(yielded) + " soil particles at yield ratio >= 1; trial " + std::to_string(trials_) +
+         " of the stage";
 }
 
 double StagedEngine::next_forcing_time() const {
@@ -146,6 +176,10 @@ EngineState StagedEngine::state() const {
   EngineState s = dynamic_->state();
   s.stage = current_;
   if (pore_water_) s.stage_values[kNextDt] = pore_water_->next_dt();
+  if (trials_ > 0) {
+    s.stage_values[kLastTrialTime] = last_trial_time_;
+    s.stage_values[kTrials] = double(trials_);
+  }
   if (plan_[std::size_t(current_)].kind == StageKind::geostatic) s.stage_values[kGeostaticSteps] = double(geostatic_steps_);
   return s;
 }
@@ -159,6 +193,10 @@ void StagedEngine::restore(const EngineState& s) {
   current_ = s.stage;
   changes_.clear();  // the state's history replaces this engine's
   pore_water_.reset();
+  const auto last_trial = s.stage_values.find(kLastTrialTime);
+  const auto trials = s.stage_values.find(kTrials);
+  last_trial_time_ = last_trial != s.stage_values.end() ? last_trial->second : -std::numeric_limits<double>::infinity();
+  trials_ = trials != s.stage_values.end() ? std::uint64_t(trials->second) : 0;
   if (plan_[std::size_t(current_)].kind == StageKind::geostatic) {
     // The relaxation is the stage's, not the state's: on again, from the steps the state had.
     const auto steps = s.stage_values.find(kGeostaticSteps);

@@ -11,6 +11,7 @@
 // in it. One implicit step is one step of the run's step count.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,11 +32,19 @@ struct GeostaticCriteria {
   std::uint64_t max_steps = 1000000;
 };
 
+// StageEnd.motion (scenario.proto): a trial of the dynamic engine from the stage's state.
+struct MotionTrial {
+  double speed = 0.1;     // m/s
+  double duration = 1.0;  // s
+  double interval = 0;    // s between trials; 0: after every implicit step
+};
+
 struct StagePlan {
   StageKind kind = StageKind::dynamic;
   std::string name;
   std::optional<double> end_time;  // s
   YieldBandCriterion yield_band;   // pore-water stage
+  std::optional<MotionTrial> motion;  // pore-water stage
   GeostaticCriteria geostatic;
   ImplicitPoreWaterSettings pore_water;
 };
@@ -84,6 +93,9 @@ class StagedEngine final : public Engine {
   // the clock restarts at t = 0 and the next stage begins.
   void geostatic_step();
   std::optional<std::string> stage_end_reached();
+  // StageEnd.motion: lets the dynamic engine run `trial.duration` from the current state, then puts
+  // the state back; the reason to switch if some soil reached trial.speed.
+  std::optional<std::string> slope_moves(const MotionTrial& trial);
   double next_forcing_time() const;
 
   std::unique_ptr<Engine> dynamic_;
@@ -94,6 +106,8 @@ class StagedEngine final : public Engine {
   std::vector<StageChange> changes_;
   bool started_ = false;
   std::uint64_t geostatic_steps_ = 0;
+  double last_trial_time_ = -std::numeric_limits<double>::infinity();
+  std::uint64_t trials_ = 0;  // motion trials in this stage
   std::unique_ptr<ImplicitPoreWater> pore_water_;
   mutable EngineState pore_water_state_;  // the fields the implicit stage advances
   mutable bool unsynced_ = false; // they are ahead of the dynamic engine's
