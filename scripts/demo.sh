@@ -1,17 +1,19 @@
 #!/usr/bin/env bash
-# The README's main job: the rainfall → landslide → wave cascade of cases/cascade_demo_2d.yaml, run
-# by cascade-server and steered live by a Python client (scripts/cascade_demo.py): rain on the
-# slope, the rainfall raised part-way, the landslide, the wave at the far bank. Outputs in
-# out/cascade_demo_2d/: PNG snapshots at the key moments, PNG plots of pore pressure, soil speed and
-# wave elevation against time, the probes, summary.json; the summary (events and their times) is
+# The README's main job: the storm → landslide → wave cascade of cases/cascade_storm_2d.yaml (a sand
+# slope at its real K_sat under a 12 h design storm in mm/h), run by cascade-server and steered live
+# by a Python client (scripts/cascade_demo.py): the geostatic start, hours of rain in the implicit
+# stage, the operator raising the forecast rain mid-storm, the failure, the slide and the wave at
+# the far bank. Outputs in out/cascade_storm_2d/: PNG snapshots at the key moments, storm.png (rain
+# in mm/h and pore pressures against hours), soil_speed.png and wave_elevation.png (against seconds
+# after the failure), the probes, summary.json; the summary (time of failure in hours, events) is
 # printed at the end. Installs the Debian packages and builds what it needs; no GPU, no display.
 #
-# usage: [CASCADE_THREADS=N] bash scripts/demo.sh [cascade_demo.py options, e.g. --raise-at 5 --raise-factor 3
-#                             --set dp=0.08]
+# usage: [CASCADE_THREADS=N] bash scripts/demo.sh [cascade_demo.py options, e.g. --raise-at "3 h"
+#                             --raise-to "120 mm/h" --set dp=0.08]
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-out=out/cascade_demo_2d
+out=out/cascade_storm_2d
 bash scripts/install-deps.sh
 cmake --preset release
 cmake --build --preset release -j"$(nproc)" --target cascade-server cascade_python_stubs
@@ -36,7 +38,7 @@ echo "cascade-server (pid $server) listening on $address; its log: $out/server.l
 
 status=0
 PYTHONPATH=build/release/python:clients/python /usr/bin/python3 scripts/cascade_demo.py \
-  --server "$address" --case cases/cascade_demo_2d.yaml --out "$out" "$@" || status=$?
+  --server "$address" --case cases/cascade_storm_2d.yaml --out "$out" "$@" || status=$?
 
 # SIGTERM: the server checkpoints what still runs and exits 0 (docs/api.md).
 kill -TERM "$server"

@@ -1,77 +1,132 @@
 """The README's main job on a real cascade-server: scripts/cascade_demo.py runs
-cases/cascade_demo_2d.yaml (rain on a slope, the rainfall raised part-way, landslide, wave at the
-far bank) while a second simulation of the same case runs beside it without the change.
+cases/cascade_storm_2d.yaml (a 12 h storm on a sand slope at its real K_sat: geostatic start,
+implicit rain stage, failure, slide into the channel, wave at the far bank), with the operator
+raising the rain mid-storm, while a second simulation of the same case runs beside it without the
+change.
 
-Checks: the cascade's events arrive in order (ponding, landslide onset, water impact, wave at the
-far gauge, overtopping); the raised rainfall brings the landslide onset earlier than in the run
-without the change; no particle of either phase is lost or created (each particle's mass is the
-fixed ρ_w0 dp^d, so the phase's mass is its count); the demo's outputs exist (snapshots and plots
-as PNG, probes, summary)."""
+Checks: the stages come in order (geostatic -> rain -> slide), the failure hours after the storm
+began; after it the cascade's events in order (landslide onset, water impact, wave at the far gauge,
+overtopping); the raised rain brings the failure earlier than in the run without the change; the
+rain stage's water balance closes to 0.1% of the rain (issue 12); no particle of either phase is
+created or destroyed (each particle's mass is the fixed ρ_w0 dp^d, so the phase's mass is its
+count); the demo's outputs exist (snapshots and plots as PNG, probes, summary). That no particle
+leaves the domain is a known failure (issue 13): after the slide, particles leave it."""
 
 import json
 import os
 import subprocess
 import sys
+import time
 import unittest
 
 import clitest
 
-ORDER = ["ponding_started", "landslide_onset", "water_impact", "wave_at_gauge", "overtopping"]
-RAISE_AT = 5.0  # s, the demo's default
+STAGES = ["geostatic", "rain", "slide"]
+AFTER_FAILURE = ["landslide_onset", "water_impact", "wave_at_gauge", "overtopping"]
+RAISE_AT_H = 2.0   # the demo's default: the rain raised to 90 mm/h at 2 h
+STORM_H = 12.0     # the case's storm
+
+
+def failure_time(events):
+    """The time of the hand-over to the slide stage, or None."""
+    for e in events:
+        if e.kind == "stage_changed" and e.message.startswith("rain -> slide"):
+            return e.time
+    return None
 
 
 class CascadeDemo(unittest.TestCase):
-    def test_events_in_order_and_rain_brings_onset_earlier(self):
+    """One demo run and one plain run, shared by the checks below (setUpClass)."""
+
+    @classmethod
+    def setUpClass(cls):
         clitest.use_python_client()
         sys.path.insert(0, str(clitest.SOURCE_DIR / "scripts"))
         from cascade_client import Client
         from cascade_demo import phase_counts
 
-        case = clitest.case("cascade_demo_2d")
-        out = clitest.out_dir("demo")
+        case = clitest.case("cascade_storm_2d")
+        cls.out = clitest.out_dir("demo")
         with clitest.Server("server") as server, Client(server.address) as client:
             # The run without the change, beside the demo's.
             plain = client.create(str(case))
-            counts0 = phase_counts(plain)
+            cls.counts0 = phase_counts(plain)
             plain.start()
             env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
-            demo = subprocess.run(
+            cls.demo = subprocess.run(
                 [sys.executable, str(clitest.SOURCE_DIR / "scripts" / "cascade_demo.py"), "--server", server.address,
-                 "--case", str(case), "--out", str(out), "--raise-at", str(RAISE_AT)],
+                 "--case", str(case), "--out", str(cls.out), "--raise-at", f"{RAISE_AT_H} h"],
                 capture_output=True, text=True, timeout=1500, env=env)
-            self.assertEqual(demo.returncode, 0, demo.stdout + demo.stderr)
-            print(demo.stdout)
-            summary = json.loads((out / "summary.json").read_text())
-            events = summary["events"]
-            first = {}
-            for e in events:
-                first.setdefault(e["kind"], e["time_s"])
-            self.assertEqual(sorted(first, key=first.get), ORDER, events)
-            self.assertGreaterEqual(summary["rainfall_change"]["time_s"], RAISE_AT)
+            print(cls.demo.stdout + cls.demo.stderr)
+            if cls.demo.returncode != 0:
+                return
+            cls.summary = json.loads((cls.out / "summary.json").read_text())
 
-            # The plain run to a little past the demo's onset: its onset, if any, comes later.
-            onset = first["landslide_onset"]
+            # The plain run to its own failure.
+            deadline = time.monotonic() + 900
+            cls.plain_failure = None
+            while cls.plain_failure is None and time.monotonic() < deadline:
+                cls.plain_failure = failure_time(plain.events())
+                if cls.plain_failure is None and plain.get().status.time > STORM_H * 3600:
+                    break
+                time.sleep(0.5)
             plain.pause()
-            if plain.get().status.time < onset + 1.0:
-                plain.run_until(onset + 1.0)
-            plain_onsets = [e.time for e in plain.events() if e.kind == "landslide_onset"]
-            print(f"onset with the rainfall raised at {summary['rainfall_change']['time_s']:.2f} s: {onset:.2f} s; "
-                  f"without: {plain_onsets[0] if plain_onsets else 'none by'} {plain.get().status.time:.2f} s")
-            self.assertTrue(not plain_onsets or plain_onsets[0] > onset + 0.5, plain_onsets)
-            self.assertEqual(phase_counts(plain), counts0)
-            self.assertFalse([e for e in plain.events() if e.kind == "particles_lost"])
+            cls.plain_counts = phase_counts(plain)
+            cls.plain_events = list(plain.events())
 
-        # The demo's run: nothing lost through the whole cascade (its summary lists every event).
-        self.assertFalse([e for e in events if e["kind"] == "particles_lost"], events)
-        self.assertEqual(summary["phase_particles"]["end"], summary["phase_particles"]["start"])
-        self.assertEqual(summary["phase_particles"]["start"], counts0)
-        for name in ("pore_pressure.png", "soil_speed.png", "wave_elevation.png"):
-            self.assertEqual((out / name).read_bytes()[:8], b"\x89PNG\r\n\x1a\n", name)
-        snapshots = sorted(p.name for p in (out / "snapshots").glob("*.png"))
-        for kind in ORDER:
+    def setUp(self):
+        self.assertEqual(self.demo.returncode, 0, self.demo.stdout + self.demo.stderr)
+
+    def test_stages_failure_and_cascade_in_order(self):
+        events = self.summary["events"]
+        stages = [e["message"].split(":")[0] for e in events if e["kind"] == "stage_changed"]
+        self.assertEqual(stages, ["start", "geostatic -> rain", "rain -> slide"], events)
+        failure_h = self.summary["time_of_failure_h"]
+        self.assertGreater(failure_h, RAISE_AT_H)
+        self.assertLess(failure_h, STORM_H)
+        first = {}
+        for e in events:
+            if e["kind"] in AFTER_FAILURE:
+                first.setdefault(e["kind"], e["time_s"])
+        self.assertEqual(sorted(first, key=first.get), AFTER_FAILURE, events)
+        self.assertGreaterEqual(min(first.values()), failure_h * 3600)
+        self.assertGreaterEqual(self.summary["rainfall_change"]["time_s"], RAISE_AT_H * 3600)
+
+    def test_rain_stage_water_balance_closes(self):
+        balance = self.summary["rain_stage_water_balance"]
+        self.assertGreater(balance["rain"], 0)
+        self.assertLessEqual(abs(balance["error"]), 1e-3 * balance["rain"], balance)
+
+    def test_raised_rain_brings_the_failure_earlier(self):
+        failure_s = self.summary["time_of_failure_h"] * 3600
+        print(f"failure with the rain raised at {RAISE_AT_H} h: {failure_s / 3600:.2f} h; without: "
+              f"{'none' if self.plain_failure is None else f'{self.plain_failure / 3600:.2f} h'}")
+        self.assertIsNotNone(self.plain_failure)
+        self.assertGreater(self.plain_failure, failure_s)
+
+    def test_outputs_and_phase_masses(self):
+        # Each particle's mass is the fixed ρ_w0 dp^d: a phase's mass is its count, lost ones included.
+        self.assertEqual(self.summary["phase_particles"]["end"], self.summary["phase_particles"]["start"])
+        self.assertEqual(self.summary["phase_particles"]["start"], self.counts0)
+        self.assertEqual(self.plain_counts, self.counts0)
+        for name in ("storm.png", "soil_speed.png", "wave_elevation.png"):
+            self.assertEqual((self.out / name).read_bytes()[:8], b"\x89PNG\r\n\x1a\n", name)
+        snapshots = sorted(p.name for p in (self.out / "snapshots").glob("*.png"))
+        for kind in AFTER_FAILURE + ["stage"]:
             self.assertTrue(any(kind in s for s in snapshots), (kind, snapshots))
-        header = (out / "probes.csv").read_text().splitlines()[0]
+        header = (self.out / "probes.csv").read_text().splitlines()[0]
         self.assertIn("gauge_far", header)
+
+    # Known failure (README, "Known failures"; issue 13, walls that hold): in the seconds after the
+    # slide enters the channel, particles leave the domain (measured 2026-12-02: 6 in the demo's
+    # first 4.3 s after the failure; in an earlier form of the soil-wall contact, water on the
+    # channel floor that sank through its dummy layers).
+    # unittest counts an unexpected success as a failure: this check tells when it holds.
+    @unittest.expectedFailure
+    def test_no_particle_leaves_the_domain_KnownFailure(self):
+        lost = [e for e in self.summary["events"] if e["kind"] == "particles_lost"]
+        lost += [e for e in self.plain_events if e.kind == "particles_lost"]
+        self.assertFalse(lost)
 
 
 if __name__ == "__main__":

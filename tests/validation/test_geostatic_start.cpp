@@ -12,12 +12,14 @@
 //    relaxed vertical effective stress is the buoyant weight above each particle;
 //  - the demo slope (cases/cascade_demo_2d.yaml without rain, at its initial 7 kPa suction) rings
 //    above 1 mm/s without the relaxation, so the check at rest can fail;
-//  - the demo slope and Fei Tsui Road (test_fei_tsui_road.cpp's coarse dp = 0.5 m, no rain)
-//    relaxed and at rest: DISABLED. Their soil carries tension by its suction beside a vertical
-//    wall, where the compression-only soil-wall pair (wall_contact_stress, soil_momentum.h)
-//    switches at zero normal stress; the relaxation stalls there (force ratio 0.1–0.6, about
-//    1 cm/s at the wall's top; docs/physics.md, "Geostatic start", known limit). They are the
-//    acceptance tests of a contact law with a stable state there.
+//  - the demo slope relaxed and at rest, at the real K_sat of cases/cascade_storm_2d.yaml
+//    (1e-4 m/s), whose slope it shares;
+//  - Fei Tsui Road (test_fei_tsui_road.cpp's coarse dp = 0.5 m, the case's K_sat, no rain): a
+//    known failure (below): its soil stands against a vertical wall.
+// Where a slope has particles at yield after the relaxation, the residual speeds of the rest run
+// (below 1e-4 m/s) strain them plastically a little: κ counts as unchanged while its change
+// alters the strength that κ sets (the softening c_r + (c_p − c_r) e^(−ηκ), Eq. 12) by no more
+// than the relaxation's own tolerance, 1e-4 relative: |Δκ| <= 1e-4/η.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -38,6 +40,7 @@ constexpr double kForceRatio = 1e-4;       // converged: unbalanced force / mean
 constexpr double kRelaxedSpeed = 1e-4;     // converged: m/s
 constexpr double kRestSpeed = 1e-3;        // at rest afterwards: m/s
 constexpr double kRestDuration = 10.0;     // s
+constexpr double kStrengthTolerance = 1e-4;  // relative: |Δκ| <= kStrengthTolerance / η
 constexpr std::uint8_t kSoil = std::uint8_t(Phase::soil);
 
 struct Relaxation {
@@ -98,15 +101,26 @@ void report(const char* name, const Relaxation& r, const Rest& rest) {
               rest.max_speed, rest.kappa_change);
 }
 
-void expect_relaxed_and_at_rest(Engine& engine, std::uint64_t max_steps, const char* name) {
-  const Relaxation r = relax(engine, max_steps);
-  const Rest rest = run_at_rest(engine, kRestDuration);
-  report(name, r, rest);
+void expect_relaxed(const Relaxation& r, std::uint64_t max_steps) {
   EXPECT_TRUE(r.converged) << "not converged in " << max_steps << " steps";
   EXPECT_LE(r.reached.force_ratio, kForceRatio);
   EXPECT_LE(r.reached.max_speed, kRelaxedSpeed);
+}
+
+// softening: the material's η of Eq. 12.
+void expect_at_rest(const Rest& rest, double softening) {
   EXPECT_LT(rest.max_speed, kRestSpeed);
-  EXPECT_EQ(rest.kappa_change, 0.0);
+  EXPECT_LE(rest.kappa_change, kStrengthTolerance / std::max(softening, 1.0));
+}
+
+// A case's slope: relaxed within 20,000 steps, then at rest for kRestDuration.
+void expect_relaxed_and_at_rest(Engine& engine, const char* name, double softening) {
+  constexpr std::uint64_t kMaxSteps = 20000;
+  const Relaxation r = relax(engine, kMaxSteps);
+  const Rest rest = run_at_rest(engine, kRestDuration);
+  report(name, r, rest);
+  expect_relaxed(r, kMaxSteps);
+  expect_at_rest(rest, softening);
 }
 
 // A saturated Drucker-Prager column, hydrostatic pore pressure from its drained top, no effective
@@ -192,8 +206,11 @@ TEST(GeostaticStart, RestoredWhileRelaxingGivesTheSameBits) {
   EXPECT_EQ(first->equilibrium().force_ratio, second->equilibrium().force_ratio);
 }
 
-// The demo's slope without rain ("dry": no water reaches it; the channel's still water stays).
-const std::vector<std::string> kDemoWithoutRain = {"hydraulics.rainfall_intensity=0"};  // it has no rain series
+// The demo's slope without rain ("dry": no water reaches it; the channel's still water stays), at
+// the real K_sat of the storm case (cases/cascade_storm_2d.yaml), which has the same slope.
+const std::vector<std::string> kDemoWithoutRain = {"hydraulics.rainfall_intensity=0",
+                                                   "materials[1].soil.saturated_conductivity=1e-4"};
+constexpr double kDemoSoftening = 4;  // η of cascade_demo_2d.yaml
 
 TEST(GeostaticStart, DemoSlopeRingsWithoutRelaxation) {
   testing::CaseRun run("cascade_demo_2d.yaml", kDemoWithoutRain);
@@ -206,15 +223,24 @@ TEST(GeostaticStart, DemoSlopeRingsWithoutRelaxation) {
   EXPECT_GT(max_speed, kRestSpeed);
 }
 
-TEST(GeostaticStart, DISABLED_DemoSlopeRelaxesAndStaysAtRest) {
+TEST(GeostaticStart, DemoSlopeRelaxesAndStaysAtRest) {
   testing::CaseRun run("cascade_demo_2d.yaml", kDemoWithoutRain);
-  expect_relaxed_and_at_rest(*run.engine, 20000, "demo slope");
+  expect_relaxed_and_at_rest(*run.engine, "demo slope", kDemoSoftening);
 }
 
-TEST(GeostaticStart, DISABLED_FeiTsuiRoadRelaxesAndStaysAtRest) {
-  testing::CaseRun run("fei_tsui_road_2d.yaml",
-                       {"dp=0.5", "materials[0].soil.saturated_conductivity=0.1", "hydraulics.rainfall_intensity=0"});
-  expect_relaxed_and_at_rest(*run.engine, 20000, "Fei Tsui Road");
+const std::vector<std::string> kFeiTsuiWithoutRain = {"dp=0.5", "hydraulics.rainfall_intensity=0"};
+
+// Known failure (README, "Known failures"): Fei Tsui Road's altered tuff stands against a vertical
+// back wall (x = −60 m) with 50 kPa of suction, which makes its total stress tensile near the
+// surface: the normal stress on the wall at equilibrium is zero, right at the switch of the
+// compression-only soil-wall pair (wall_contact_stress, soil_momentum.h), and the relaxation
+// stalls there (measured 2026-12-02: force ratio 0.18 and 2.2e-2 m/s after 20,000 steps). Contact
+// laws continuous at the switch relaxed it (2,752 steps with the tensile normal traction dropped
+// and the shear kept), but let the landslide flume's dry mass through the slope (docs/physics.md,
+// "Geostatic start"); and relaxed, the undamped slope left rest from its thin toe (0.94 m/s in 10 s).
+TEST(GeostaticStart, FeiTsuiRoadRelaxesAndStaysAtRestKnownFailure) {
+  testing::CaseRun run("fei_tsui_road_2d.yaml", kFeiTsuiWithoutRain);
+  expect_relaxed_and_at_rest(*run.engine, "Fei Tsui Road", 1.0);  // η = 1 (Table 2)
 }
 
 }  // namespace
