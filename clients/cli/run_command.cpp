@@ -30,6 +30,7 @@
 #include "server/scenario/engine_setup.h"
 #include "server/scenario/forcing_message.h"
 #include "server/scenario/particle_builder.h"
+#include "server/scenario/output_schedule.h"
 #include "server/scenario/rain_series.h"
 #include "server/scenario/soil_setup.h"
 #include "server/scenario/stage_setup.h"
@@ -140,14 +141,14 @@ class Outputs {
       const std::vector<double> values = sampler_.sample(frame);
       probes_->write_row(t, values);
       fired = events_.observe(frame, values, engine.forcing().ponding_pressure);
-      while (next_probe_ <= t + probe_slack) next_probe_ += probe_interval_;
+      next_probe_ = next_due_time(next_probe_, t, probe_interval_);
       last_probe_time_ = t;
     }
     if (frame_due) {
       if (hdf5_) hdf5_->write(frame);
       if (vtk_) vtk_->write(frame);
       snapshots_.write(frame);
-      while (next_frame_ <= t + frame_slack) next_frame_ += frame_interval_;
+      next_frame_ = next_due_time(next_frame_, t, frame_interval_);
       last_frame_time_ = t;
     }
     return fired;

@@ -7,6 +7,7 @@
 
 #include "render/png_encoder.h"
 #include "render/snapshot_renderer.h"
+#include "server/scenario/output_schedule.h"
 #include "server/service/frame_tap.h"
 
 namespace cascade::service {
@@ -67,7 +68,7 @@ class SnapshotHub::Stream : public grpc::ServerWriteReactor<v1::SnapshotImage>,
     if (!next_due_) next_due_ = interval_.simulated ? start_time_ + interval_.seconds : now + interval_.seconds;
     if (now < *next_due_ - 1e-12 * interval_.seconds) return false;
     if (interval_.simulated)
-      while (*next_due_ <= now + 1e-12 * interval_.seconds) *next_due_ += interval_.seconds;
+      next_due_ = next_due_time(*next_due_, now, interval_.seconds);
     else
       next_due_ = now + interval_.seconds;
     return true;

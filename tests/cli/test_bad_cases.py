@@ -137,6 +137,12 @@ class BadOverridesAndOptions(unittest.TestCase):
         "invalid_value": (["--set", "dp=-1"], r"key 'dp': must be greater than 0 \(is -1\) \(from --set dp=-1\)"),
         "no_equals": (["--set", "dp"], r"key '--set': 'dp' is not of the form"),
         "bad_yaml": (["--set", "gravity=[0, -9.81"], r"key '--set': the value of .* is not valid YAML"),
+        # Issue 14: these intervals froze `cascade run` and every request of the server.
+        "output_interval_tiny": (["--set", "output.interval=1e-300"],
+                                 r"key 'output\.interval': must be 0 \(end_time / 100\) or at least 1e-6 s "
+                                 r"\(is 1e-300 s\)"),
+        "probe_interval_tiny": (["--set", "output.probe_interval=1e-20"],
+                                r"key 'output\.probe_interval': must be 0 .* or at least 1e-6 s"),
     }
     OPTION_ERRORS = {
         "threads_0": (["--threads", "0"], r"--threads must be a whole number from 1 to 1024"),

@@ -200,5 +200,48 @@ class UnknownFields(unittest.TestCase):
             self.assertEqual(sim.get().forcing.rainfall.intensity, 4e-5)
 
 
+
+
+class OutputIntervals(unittest.TestCase):
+    """Issue 14: `--set output.interval=1e-300` was accepted, and once it ran every request of every
+    simulation hung and SIGTERM no longer stopped the server. Such intervals are now refused, and the
+    shortest accepted one gives at most one output per step without holding other requests."""
+
+    def test_tiny_interval_refused_and_the_shortest_one_keeps_the_server_serving(self):
+        import time
+        grpc, field_mask_pb2, journal_pb2, pb = import_api()
+        import cascade_client
+        with clitest.Server("output_intervals") as server, cascade_client.Client(server.address) as client:
+            for key in ("output.interval", "output.probe_interval"):
+                with self.subTest(key=key), self.assertRaises(grpc.RpcError) as raised:
+                    client.create(clitest.fixture("rain_column"), overrides=[f"{key}=1e-300"])
+                self.assertEqual(raised.exception.code(), grpc.StatusCode.INVALID_ARGUMENT)
+                self.assertIn(key, raised.exception.details())
+                self.assertIn("at least 1e-6 s", raised.exception.details())
+
+            other = client.create(clitest.fixture("rain_column"), simulation_id="other")
+            # t reaches 600 s in steps of 2 s: with probes every 1e-6 s the old schedule added the
+            # interval some 2e6 times per step, under the session's lock.
+            busy = client.create(clitest.fixture("rain_column"), simulation_id="busy",
+                                 overrides=["output.probe_interval=1e-6"])
+            busy.start()
+            slowest = 0.0
+            while busy.get().status.state != pb.Simulation.COMPLETED:
+                begin = time.monotonic()
+                other.get()
+                client.list()
+                slowest = max(slowest, time.monotonic() - begin)
+                time.sleep(0.05)
+            status = busy.get().status
+            self.assertGreater(status.step, 100)
+            self.assertLess(slowest, 1.0, "Get and List waited on the busy simulation's output phase")
+            # One probe sample per step, not one per interval.
+            _, _, steps, _ = busy.probes()
+            self.assertEqual(len(set(steps)), len(steps))
+            self.assertGreaterEqual(len(steps), status.step)
+            code, rest = server.stop()
+            self.assertEqual(code, 0, rest)
+
+
 if __name__ == "__main__":
     clitest.main()
