@@ -244,7 +244,12 @@ class Simulation final : public Engine {
       dens.values[i] = double(water_density[k]);
       num.values[i] = double(density[k]);
     }
-    f.fields = {std::move(vel), std::move(pres), std::move(dens), std::move(num)};
+    // Particles past active_ left the domain along a non-periodic axis (cell_sort.h): they keep
+    // their phase and last state in the frame, flagged here, so that no count of a phase can
+    // hide them (docs/output.md).
+    FieldFrame::RealField lost{"lost", "1", 1, std::vector<double>(n)};
+    for (std::size_t k = active_; k < n; ++k) lost.values[id[k]] = 1.0;
+    f.fields = {std::move(vel), std::move(pres), std::move(dens), std::move(num), std::move(lost)};
     if (has_soil_) add_soil_fields(f, id, pressure, axis3);
     return f;
   }
