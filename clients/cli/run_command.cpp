@@ -30,6 +30,7 @@
 #include "server/scenario/engine_setup.h"
 #include "server/scenario/forcing_message.h"
 #include "server/scenario/particle_builder.h"
+#include "server/scenario/plausible_ranges.h"
 #include "server/scenario/output_schedule.h"
 #include "server/scenario/rain_series.h"
 #include "server/scenario/soil_setup.h"
@@ -196,9 +197,17 @@ void apply_rain_series(const v1::ScenarioSpec& spec, Engine& engine, RunSummary&
 // then give the same bits.
 class JournalReplay {
  public:
-  explicit JournalReplay(const std::filesystem::path& path) {
-    for (auto& entry : read_journal(path))
+  // Refuses, before the first step, a journal written for another case and forcing that
+  // UpdateForcing would have refused (a hand-edited NaN rain was applied): the ranges of
+  // plausible_ranges.h, as for a case file and a request.
+  JournalReplay(const std::filesystem::path& path, const std::string& case_name) {
+    for (auto& entry : read_journal(path)) {
+      const std::string where = path.filename().string() + ", step " + std::to_string(entry.step()) + ": ";
+      if (entry.command() == "create" && entry.case_name() != case_name)
+        throw std::runtime_error(where + "the journal is of case '" + entry.case_name() + "', not '" + case_name + "'");
+      if (entry.command() == "update_forcing") check_forcing(where, entry);
       if (entry.command() == "update_forcing" || entry.command() == "advance_stage") changes_.push_back(std::move(entry));
+    }
   }
 
   // Applies the changes due at the engine's step; false once the rain intensity has been steered.
@@ -226,6 +235,18 @@ class JournalReplay {
   }
 
  private:
+  static void check_forcing(const std::string& where, const v1::JournalEntry& entry) {
+    const v1::Forcing& f = entry.new_forcing();
+    for (const auto& field : entry.update_mask()) {
+      if (field == "rainfall.intensity")
+        if (const auto message = implausible(kRainfallIntensity, f.rainfall().intensity()))
+          throw std::runtime_error(where + "rainfall.intensity " + *message);
+      if ((field == "ponding.p_max" && !std::isfinite(f.ponding().p_max())) ||
+          (field == "ponding.p_min" && f.ponding().has_p_min() && !std::isfinite(f.ponding().p_min())))
+        throw std::runtime_error(where + field + " is not a finite number");
+    }
+  }
+
   static std::string join(const std::vector<std::string>& fields) {
     std::string text;
     for (const auto& f : fields) text += (text.empty() ? "" : ", ") + f;
@@ -296,7 +317,7 @@ int run_command(const std::vector<std::string>& args) {
                                     std::to_string(steps) + " steps; clock and displacement restart at t = 0"});
     }
     std::optional<JournalReplay> replay;
-    if (!options.replay.empty()) replay.emplace(options.replay);
+    if (!options.replay.empty()) replay.emplace(options.replay, spec.name());
     Progress progress(end_time, stderr);
     const auto record = [&](const std::vector<CascadeEvent>& fired) {
       for (const CascadeEvent& e : fired) {

@@ -10,6 +10,7 @@
 #include "server/scenario/case_error.h"
 #include "server/scenario/case_loader.h"
 #include "server/scenario/number_text.h"
+#include "server/scenario/plausible_ranges.h"
 #include "server/scenario/snapshot_fields.h"
 #include "server/scenario/soil_setup.h"
 
@@ -100,6 +101,10 @@ class SpecChecker {
                      " s): outputs come at most once per step, and a shorter interval is most likely a slip of units");
   }
 
+  void plausible(const std::string& key, const PlausibleRange& range, double v) const {
+    if (const auto message = implausible(range, v)) error(key, *message);
+  }
+
   void check_vector(const std::string& key, const RepeatedField<double>& v, int size, const std::string& what) const {
     if (v.size() != size)
       error(key, "has " + std::to_string(v.size()) + (v.size() == 1 ? " component; " : " components; ") + what +
@@ -173,7 +178,9 @@ class SpecChecker {
 
   void check_water(const std::string& key, const pb::WaterModel& w) const {
     non_negative(key + ".density", w.density(), "1000");
+    if (w.density() > 0) plausible(key + ".density", kLiquidDensity, w.density());
     non_negative(key + ".sound_speed", w.sound_speed(), "Eq. 24a");
+    if (w.sound_speed() > 0) plausible(key + ".sound_speed", kSoundSpeed, w.sound_speed());
     non_negative(key + ".max_speed", w.max_speed(), "sqrt(2 g H)");
     non_negative(key + ".max_pressure", w.max_pressure(), "rho g H");
     if (w.has_delta()) {
@@ -675,7 +682,7 @@ class SpecChecker {
   void check_hydraulic_boundary(const std::string& key, const pb::HydraulicBoundary& h) const {
     if (soil_material_indices(spec_).empty())
       error(key, "acts on the free surface of soil, and the case has no soil material");
-    finite(key + ".rainfall_intensity", h.rainfall_intensity());
+    plausible(key + ".rainfall_intensity", kRainfallIntensity, h.rainfall_intensity());
     if (h.rainfall_size() > 0 && h.rainfall_intensity() != 0)
       error(key + ".rainfall", "cannot be given together with rainfall_intensity: give a constant intensity or a "
                                "time series");
@@ -691,7 +698,7 @@ class SpecChecker {
       const std::string point_key = indexed(key + ".rainfall", i);
       const pb::RainfallPoint& point = h.rainfall(i);
       finite(point_key + ".time", point.time());
-      finite(point_key + ".intensity", point.intensity());
+      plausible(point_key + ".intensity", kRainfallIntensity, point.intensity());
       if (point.time() < 0) error(point_key + ".time", "must not be negative (is " + number_text(point.time()) + ")");
       if (i > 0 && !(point.time() > h.rainfall(i - 1).time()))
         error(point_key + ".time", "must be later than the time of the point before (" + number_text(point.time()) +

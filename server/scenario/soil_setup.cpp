@@ -5,6 +5,7 @@
 #include "server/physics/swcc/hydraulic_model_check.h"
 #include "server/scenario/case_error.h"
 #include "server/scenario/number_text.h"
+#include "server/scenario/plausible_ranges.h"
 
 namespace cascade {
 
@@ -38,6 +39,9 @@ class Reporter {
   void non_negative(const std::string& key, double v, const std::string& zero_means) const {
     finite(key, v);
     if (v < 0) error(key, "must not be negative (is " + number_text(v) + "); 0 means " + zero_means);
+  }
+  void plausible(const std::string& key, const PlausibleRange& range, double v) const {
+    if (const auto message = implausible(range, v)) error(key, *message);
   }
 
  private:
@@ -142,6 +146,7 @@ SoilModel<double> mechanical_model(const pb::SoilModel& s, const std::string& ke
     const std::string name = first_word(message);
     report.error(name == "kind" ? sub : sub + "." + drucker_prager_key(name), message);
   }
+  report.plausible(sub + ".youngs_modulus", kYoungsModulus, model.youngs_modulus);
   return model;
 }
 
@@ -173,11 +178,14 @@ SoilMaterial soil_material(const pb::ScenarioSpec& spec, int material_index, con
   if (!material.has_soil()) report.error("materials[" + std::to_string(material_index) + "]", "is not a soil");
   const pb::SoilModel& s = material.soil();
   report.positive(key + ".grain_density", s.grain_density());
+  report.plausible(key + ".grain_density", kGrainDensity, s.grain_density());
   report.finite(key + ".porosity", s.porosity());
   if (!(s.porosity() > 0 && s.porosity() < 1))
     report.error(key + ".porosity", "must be in (0, 1) (is " + number_text(s.porosity()) + ")");
   report.positive(key + ".saturated_conductivity", s.saturated_conductivity());
+  report.plausible(key + ".saturated_conductivity", kSaturatedConductivity, s.saturated_conductivity());
   report.non_negative(key + ".water_bulk_modulus", s.water_bulk_modulus(), "2e6 Pa");
+  if (s.water_bulk_modulus() > 0) report.plausible(key + ".water_bulk_modulus", kWaterBulkModulus, s.water_bulk_modulus());
   report.non_negative(key + ".pore_sound_speed", s.pore_sound_speed(), "10 saturated_conductivity");
   if (s.has_delta()) {
     report.finite(key + ".delta", s.delta());

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "server/scenario/forcing_message.h"
+#include "server/scenario/plausible_ranges.h"
 
 namespace cascade::service {
 
@@ -116,8 +117,7 @@ grpc::Status check_update_forcing(const v1::UpdateForcingRequest& request, const
     if (path == "rainfall.intensity") {
       const double i = f.rainfall().intensity();
       if (!std::isfinite(i)) return invalid("forcing.rainfall.intensity", "is not a finite number");
-      if (std::abs(i) > kMaxRainfallIntensity)
-        return invalid("forcing.rainfall.intensity", number(i) + " m/s is beyond ±" + number(kMaxRainfallIntensity) + " m/s");
+      if (const auto message = implausible(kRainfallIntensity, i)) return invalid("forcing.rainfall.intensity", *message);
     } else if (path == "rainfall.region" && f.rainfall().has_region()) {
       const auto status = check_box("forcing.rainfall.region", f.rainfall().region(), dimensions);
       if (!status.ok()) return status;

@@ -143,6 +143,27 @@ class BadOverridesAndOptions(unittest.TestCase):
                                  r"\(is 1e-300 s\)"),
         "probe_interval_tiny": (["--set", "output.probe_interval=1e-20"],
                                 r"key 'output\.probe_interval': must be 0 .* or at least 1e-6 s"),
+        # Issue 14: values that describe nothing real (server/scenario/plausible_ranges.h).
+        "water_density_huge": (["--set", "materials[0].water.density=1e300"],
+                               r"key 'materials\[0\]\.water\.density': must be in \[100, 20000\] kg/m\^3 "
+                               r"\(is 1e\+300\): liquids lie between"),
+        "sound_speed_tiny": (["--set", "materials[0].water.sound_speed=1e-10"],
+                             r"key 'materials\[0\]\.water\.sound_speed': must be in \[0\.1, 10000\] m/s"),
+    }
+    # The same on a soil case (cases/infiltration_1d.yaml).
+    SOIL_SET_ERRORS = {
+        "conductivity_huge": (["--set", "materials[0].soil.saturated_conductivity=1e6"],
+                              r"key 'materials\[0\]\.soil\.saturated_conductivity': must be in \[1e-15, 10\] m/s "
+                              r"\(is 1000000\)"),
+        "grain_density_huge": (["--set", "materials[0].soil.grain_density=1e300"],
+                               r"key 'materials\[0\]\.soil\.grain_density': must be in \[300, 20000\]"),
+        "youngs_modulus_tiny": (["--set", "materials[0].soil.rigid=false",
+                                 "--set", "materials[0].soil.mechanical={linear_elastic: {youngs_modulus: 1e-30, "
+                                 "poisson_ratio: 0.3}}"],
+                                r"key 'materials\[0\]\.soil\.mechanical\.linear_elastic\.youngs_modulus': must be in "
+                                r"\[100, 1e\+12\] Pa"),
+        "rain_huge": (["--set", "hydraulics.rainfall_intensity=1e10"],
+                      r"key 'hydraulics\.rainfall_intensity': must be in \[-0\.1, 0\.1\] m/s \(is 1e\+10\)"),
     }
     OPTION_ERRORS = {
         "threads_0": (["--threads", "0"], r"--threads must be a whole number from 1 to 1024"),
@@ -154,9 +175,9 @@ class BadOverridesAndOptions(unittest.TestCase):
         "two_cases": (["other.yaml"], r"unexpected argument 'other\.yaml'"),
     }
 
-    def check(self, name, args, pattern, with_out=True):
+    def check(self, name, args, pattern, with_out=True, base=BASE):
         out = clitest.out_dir(f"opt_{name}")
-        argv = ["run", clitest.case(BASE), "--until", "0.001"] + (["--out", out] if with_out else []) + args
+        argv = ["run", clitest.case(base), "--until", "0.001"] + (["--out", out] if with_out else []) + args
         p = clitest.run(*argv)
         self.assertEqual(p.returncode, 2, p.stderr)
         self.assertRegex(p.stderr, rf"^cascade run: .*{pattern}")
@@ -167,6 +188,11 @@ class BadOverridesAndOptions(unittest.TestCase):
         for name, (args, pattern) in sorted(self.SET_ERRORS.items()):
             with self.subTest(set=name):
                 self.check(f"set_{name}", args, pattern)
+
+    def test_bad_soil_set(self):
+        for name, (args, pattern) in sorted(self.SOIL_SET_ERRORS.items()):
+            with self.subTest(set=name):
+                self.check(f"soil_set_{name}", args, pattern, base="infiltration_1d")
 
     def test_bad_options(self):
         for name, (args, pattern) in sorted(self.OPTION_ERRORS.items()):
@@ -193,6 +219,36 @@ class BadOverridesAndOptions(unittest.TestCase):
         p = clitest.run("help")
         self.assertEqual(p.returncode, 0)
         self.assertIn("run CASE.yaml --out DIR", p.stdout)
+
+
+class BadJournals(unittest.TestCase):
+    """`cascade run --replay` refuses, before the first step, a journal of another case and forcing
+    that UpdateForcing would refuse (issue 14: both were applied)."""
+
+    CREATE = '{"caller":"local","command":"create","case_name":"%s"}'
+    RAIN = ('{"step":"3","time":6,"caller":"local","command":"update_forcing","update_mask":["rainfall.intensity"],'
+            '"old_forcing":{"rainfall":{"intensity":1e-06},"ponding":{}},"new_forcing":{"rainfall":{"intensity":%s},'
+            '"ponding":{}}}')
+    JOURNALS = {
+        "other_case": ([CREATE % "hydrostatic_tank_2d"], r"step 0: the journal is of case 'hydrostatic_tank_2d', "
+                                                         r"not 'rain_column'"),
+        "nan_rain": ([CREATE % "rain_column", RAIN % '"NaN"'],
+                     r"step 3: rainfall\.intensity must be in \[-0\.1, 0\.1\] m/s \(is nan\)"),
+        "huge_rain": ([CREATE % "rain_column", RAIN % "1e10"],
+                      r"step 3: rainfall\.intensity must be in \[-0\.1, 0\.1\] m/s \(is 1e\+10\)"),
+    }
+
+    def test_refused_before_the_first_step(self):
+        for name, (lines, pattern) in sorted(self.JOURNALS.items()):
+            with self.subTest(journal=name):
+                out = clitest.out_dir(f"journal_{name}")
+                out.mkdir(parents=True, exist_ok=True)
+                journal = out / "journal.jsonl"
+                journal.write_text("\n".join(lines) + "\n")
+                p = clitest.run("run", clitest.fixture("rain_column"), "--out", out / "run", "--replay", journal)
+                self.assertEqual(p.returncode, 1, p.stderr)
+                self.assertRegex(p.stderr, rf"cascade run: failed: journal\.jsonl, {pattern}")
+                self.assertIn('"steps": 0', (out / "run" / "run.json").read_text())
 
 
 if __name__ == "__main__":
