@@ -517,6 +517,7 @@ int watch_frames(Remote& remote) {
 }
 
 void print_checkpoint(const v1::Checkpoint& c) {
+  if (!c.error().empty()) return (void)std::printf("%s  unreadable: %s\n", c.name().c_str(), c.error().c_str());
   std::printf("%s  t = %.9g s, step %llu  %s\n", c.name().c_str(), c.time(), static_cast<unsigned long long>(c.step()),
               c.path().c_str());
 }

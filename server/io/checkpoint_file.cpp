@@ -108,6 +108,44 @@ std::vector<std::string> dataset_names(hid_t group) {
   return names;
 }
 
+// FNV-1a (64 bit) over the checkpoint's content, in the order written: a file damaged after it
+// was written (flipped bytes in its datasets restored without an error, issue 14) no longer
+// matches the root's `checksum` attribute.
+class Digest {
+ public:
+  void add(const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t k = 0; k < bytes; ++k) hash_ = (hash_ ^ p[k]) * 1099511628211ull;
+  }
+  void add(const std::string& s) { add(std::uint64_t(s.size())), add(s.data(), s.size()); }
+  template <typename T>
+  void add(const std::vector<T>& v) { add(std::uint64_t(v.size())), add(v.data(), v.size() * sizeof(T)); }
+  void add(double v) { add(&v, sizeof v); }
+  void add(std::uint64_t v) { add(&v, sizeof v); }
+  std::uint64_t value() const { return hash_; }
+
+ private:
+  std::uint64_t hash_ = 14695981039346656037ull;
+};
+
+std::uint64_t content_checksum(const Checkpoint& c, const std::string& spec_bytes) {
+  Digest d;
+  d.add(c.simulation), d.add(spec_bytes), d.add(c.journal), d.add(c.wall_time);
+  const EngineState& s = c.engine;
+  d.add(s.time), d.add(s.steps), d.add(s.last_dt), d.add(std::uint64_t(s.dimensions));
+  d.add(std::uint64_t(s.single_precision)), d.add(std::uint64_t(s.particles));
+  const HydraulicForcing& f = s.forcing;
+  d.add(f.rainfall_intensity), d.add(f.ponding_pressure), d.add(f.drying_pressure);
+  d.add(std::uint64_t(f.has_surface_pressure)), d.add(f.surface_pressure), d.add(std::uint64_t(f.has_region));
+  for (int a = 0; a < 3; ++a) d.add(double(f.region_min[a])), d.add(double(f.region_max[a]));
+  d.add(s.displacement_reference);
+  for (const auto& [name, values] : s.reals) d.add(name), d.add(values);
+  for (const auto& [name, values] : s.integers) d.add(name), d.add(values);
+  d.add(std::uint64_t(s.stage));
+  for (const auto& [name, value] : s.stage_values) d.add(name), d.add(value);
+  return d.value();
+}
+
 // The root's attributes, which a listing reads alone.
 void write_summary(hid_t file, const Checkpoint& c) {
   write_string_attribute(file, "format", kFormat);
@@ -154,7 +192,9 @@ void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
     {
       Handle file(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "create");
       write_summary(file, c);
-      write_bytes(file, "case_spec", c.spec.SerializeAsString());
+      const std::string spec_bytes = c.spec.SerializeAsString();
+      write_u64(file, "checksum", content_checksum(c, spec_bytes));
+      write_bytes(file, "case_spec", spec_bytes);
       write_bytes(file, "journal", c.journal);
       write_forcing(file, c.engine.forcing);
       write_array(file, "displacement_reference", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, c.engine.displacement_reference);
@@ -188,7 +228,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
     Checkpoint c;
     c.simulation = summary.simulation;
     c.wall_time = summary.wall_time;
-    if (!c.spec.ParseFromString(read_bytes(file, "case_spec"))) throw std::runtime_error("case_spec is not a ScenarioSpec");
+    const std::string spec_bytes = read_bytes(file, "case_spec");
+    if (!c.spec.ParseFromString(spec_bytes)) throw std::runtime_error("case_spec is not a ScenarioSpec");
     c.journal = read_bytes(file, "journal");
     EngineState& s = c.engine;
     s.time = summary.time;
@@ -216,6 +257,9 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
         s.integers[name] = read_array<std::uint32_t>(engine, name.c_str(), H5T_NATIVE_UINT32);
       else s.reals[name] = read_array<double>(engine, name.c_str(), H5T_NATIVE_DOUBLE);
     }
+    // Files written before the checksum (2026-12-02) have none and are taken as they are.
+    if (H5Aexists(file, "checksum") > 0 && read_u64(file, "checksum") != content_checksum(c, spec_bytes))
+      throw std::runtime_error("its content does not match its checksum: the file is damaged");
     return c;
   });
 }

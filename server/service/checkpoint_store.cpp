@@ -60,7 +60,17 @@ std::vector<v1::Checkpoint> list_checkpoints(const std::string& simulation_name,
     if (entry.path().extension() == ".h5") files.push_back(entry.path());
   std::sort(files.begin(), files.end());  // ckpt-NNNN: the order taken
   std::vector<v1::Checkpoint> checkpoints;
-  for (const auto& file : files) checkpoints.push_back(describe_checkpoint(simulation_name, file));
+  for (const auto& file : files) {
+    try {
+      checkpoints.push_back(describe_checkpoint(simulation_name, file));
+    } catch (const std::exception& e) {  // one unreadable file hid every checkpoint (issue 14)
+      v1::Checkpoint c;
+      c.set_name(checkpoint_name(simulation_name, file));
+      c.set_path(file.string());
+      c.set_error(e.what());
+      checkpoints.push_back(std::move(c));
+    }
+  }
   return checkpoints;
 }
 

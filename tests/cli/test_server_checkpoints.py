@@ -103,6 +103,53 @@ class PythonClientCheckpoints(CheckpointTest):
             self.assertEqual([c.name for c in sim.checkpoints()], [checkpoint.name])
 
 
+class DamagedCheckpoints(CheckpointTest):
+    """Issue 14: one unreadable checkpoint made ListCheckpoints fail for all of them, and a file with
+    its last 4 KiB flipped restored without an error."""
+
+    def test_damaged_files_are_listed_with_their_error_and_not_restored(self):
+        import pathlib
+        import grpc
+        clitest.use_python_client()
+        import cascade_client
+
+        with clitest.Server("damaged") as server, cascade_client.Client(server.address) as client:
+            sim = client.create(clitest.fixture("rain_column"), simulation_id="col")
+            sim.step(10)
+            good = sim.checkpoint()
+            sim.step(10)
+            flipped = sim.checkpoint()
+            path = pathlib.Path(flipped.path)
+            data = bytearray(path.read_bytes())
+            for k in range(len(data) - 4096, len(data)):
+                data[k] ^= 0xFF
+            path.write_bytes(bytes(data))
+            (path.parent / "ckpt-0003.h5").write_bytes(b"not an HDF5 file")
+
+            listed = sim.checkpoints()
+            self.assertEqual([c.name.split("/")[-1] for c in listed], ["ckpt-0001", "ckpt-0002", "ckpt-0003"])
+            self.assertEqual(listed[0].error, "")
+            self.assertEqual(listed[0].step, good.step)
+            self.assertNotEqual(listed[2].error, "")
+            for damaged in ("ckpt-0002", "ckpt-0003"):
+                with self.subTest(checkpoint=damaged), self.assertRaises(grpc.RpcError) as raised:
+                    sim.restore(damaged)
+                self.assertEqual(raised.exception.code(), grpc.StatusCode.DATA_LOSS)
+                self.assertTrue(raised.exception.details().startswith("name: checkpoint "), raised.exception.details())
+            self.assertIn("damaged", self.last_details(sim, "ckpt-0002"))
+            restored = sim.restore("ckpt-0001")
+            self.assertEqual(restored.status.step, good.step)
+
+    @staticmethod
+    def last_details(sim, checkpoint):
+        import grpc
+        try:
+            sim.restore(checkpoint)
+        except grpc.RpcError as e:
+            return e.details()
+        return ""
+
+
 class SigtermCheckpoints(CheckpointTest):
     def test_sigterm_checkpoints_and_a_new_server_goes_on_bit_identically(self):
         long_run = ("--set", "end_time=1e6")
