@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -413,10 +414,48 @@ void expand_hyetograph(pb::HydraulicBoundary& hydraulics, const std::filesystem:
   hydraulics.clear_hyetograph();
 }
 
+// The offset of the first byte that is not part of a well-formed UTF-8 sequence (no overlong
+// forms, no surrogates, nothing above U+10FFFF: what protobuf accepts in a string), or npos.
+std::size_t first_non_utf8_byte(const std::string& text) {
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const unsigned char c = byte(i);
+    const int extra = c < 0x80 ? 0 : c >= 0xC2 && c <= 0xDF ? 1 : c >= 0xE0 && c <= 0xEF ? 2 : c >= 0xF0 && c <= 0xF4 ? 3 : -1;
+    if (extra < 0 || i + extra >= text.size() + (extra == 0 ? 1 : 0)) return i;
+    for (int k = 1; k <= extra; ++k)
+      if ((byte(i + k) & 0xC0) != 0x80) return i;
+    if (extra >= 2) {
+      const unsigned char next = byte(i + 1);
+      if ((c == 0xE0 && next < 0xA0) || (c == 0xED && next >= 0xA0) || (c == 0xF0 && next < 0x90) ||
+          (c == 0xF4 && next >= 0x90))
+        return i;
+    }
+    i += std::size_t(extra) + 1;
+  }
+  return std::string::npos;
+}
+
+// A case is UTF-8 text (YAML's encoding, and protobuf's for the strings a case fills): a Latin-1
+// comment was accepted by `cascade run` and made CreateSimulation fail with an empty UNIMPLEMENTED
+// (issue 14). The error names the line and column of the first foreign byte.
+void require_utf8(const std::string& text, const std::string& file_name) {
+  const std::size_t at = first_non_utf8_byte(text);
+  if (at == std::string::npos) return;
+  const std::size_t line_start = text.rfind('\n', at == 0 ? 0 : at - 1);
+  const int line = 1 + int(std::count(text.begin(), text.begin() + std::ptrdiff_t(at), '\n'));
+  const int column = 1 + int(at - (line_start == std::string::npos || at == 0 ? 0 : line_start + 1));
+  char hex[8];
+  std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned>(static_cast<unsigned char>(text[at])));
+  throw CaseError("(encoding)", std::string("byte ") + hex + " is not UTF-8: save the case file as UTF-8 (Latin-1 "
+                  "accents, for one, are not)", line, column, file_name);
+}
+
 // load_case_text and load_case_file: a case file has a folder, from which its hyetograph is read;
 // a case given as text has none, and a hyetograph in it is left for check_spec to refuse.
 pb::ScenarioSpec load_case(const std::string& yaml_text, const std::vector<CaseOverride>& overrides,
                            const std::string& file_name, const std::optional<std::filesystem::path>& case_directory) {
+  require_utf8(yaml_text, file_name);
   YamlMapper mapper(file_name, overrides);
   pb::ScenarioSpec spec;
   try {
