@@ -1,6 +1,8 @@
-// What the landslide tests count on a frame: the water and soil particles, those outside the
-// case's domain, and the soil's centroid with its speed (every particle has one mass, so counts
-// are masses and means are centroids).
+// What the landslide tests count on a frame: the water and soil particles still in the run (a
+// particle the engine flagged `lost` keeps its phase in the frame, so it is counted apart: a
+// count of all particles of a phase could never change), those outside the case's domain, and
+// the soil's centroid with its speed (every particle has one mass, so counts are masses and means
+// are centroids).
 #pragma once
 
 #include <cmath>
@@ -14,20 +16,25 @@
 namespace cascade::testing {
 
 struct PhaseCounts {
-  std::size_t water = 0, soil = 0, outside = 0;
+  std::size_t water = 0, soil = 0, outside = 0, lost = 0;
 };
 
 inline PhaseCounts count(const FieldFrame& f, const v1::ScenarioSpec& spec) {
   PhaseCounts n;
+  const auto* lost = f.find("lost");
   for (std::size_t i = 0; i < f.size(); ++i) {
     const double x = f.position[3 * i], z = f.position[3 * i + 2];
     const int vertical = spec.dimensions() - 1;  // the domain's z index
     const bool inside = x >= spec.domain().min(0) && x <= spec.domain().max(0) &&
                         z >= spec.domain().min(vertical) && z <= spec.domain().max(vertical) && std::isfinite(x) &&
                         std::isfinite(z);
+    if (f.phase[i] != std::uint8_t(Phase::boundary) && !inside) ++n.outside;
+    if (lost && lost->values[i] != 0) {
+      ++n.lost;
+      continue;
+    }
     if (f.phase[i] == std::uint8_t(Phase::water)) ++n.water;
     if (f.phase[i] == std::uint8_t(Phase::soil)) ++n.soil;
-    if (f.phase[i] != std::uint8_t(Phase::boundary) && !inside) ++n.outside;
   }
   return n;
 }

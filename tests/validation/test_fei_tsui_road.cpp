@@ -20,12 +20,12 @@
 //  - E stays at Table 2's 50 MPa. (E = 10 MPa gave the same onset within 0.5 s and a tip 1.3 m
 //    farther, docs/cases.md.)
 // Measured (docs/cases.md): ponding within the first second, onset at 5 s, no onset without rain,
-// the deposit's tip 9.1 m past the toe at rest: 69% short of the 29 m. The runout is therefore
-// printed and not checked (not loosened either): the section of Fig. 11 is lost and the assumed
+// the deposit's tip 9.1 m past the toe at rest: 69% short of the 29 m. The runout check is
+// therefore a known failure (RunoutAgainstKnillKnownFailure, not loosened): the section of Fig. 11 is lost and the assumed
 // one governs the runout (a first draft gave 16.6 m), while neither the ×100 K_sat (×10: 8.9 m)
 // nor the coarse dp (0.35 m: 8.7 m) moves it; and 3 of 802 soil particles still leave through
-// the decomposed tuff (docs/cases.md). The check of the issue, |runout − 29 m| ≤ 25%, waits for
-// the real section.
+// the decomposed tuff (docs/cases.md; NoSoilLeavesThroughTheTuffKnownFailure). The check of the
+// issue, |runout − 29 m| ≤ 25%, waits for the real section.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -139,13 +139,28 @@ TEST(FeiTsuiRoad2D, FailsAfterPondingNotWithoutRain) {
   EXPECT_LT(wet.ponding, wet.onset) << "the slope failed before its surface ponded";
   EXPECT_TRUE(wet.at_rest) << "the deposit still moving at t = " << wet.end << " s";
   EXPECT_GT(wet.tip.deposit - kToe, 0.0) << "the debris did not pass the toe";
-  // The runout, measured and printed, not yet checked (the header above says why).
-  const double runout = wet.tip.deposit - kToe;
-  std::printf("runout %.2f m against %.0f m observed (%+.0f%%; the issue asks for within %.0f%%)\n", runout,
-              kObservedRunout, 100 * (runout / kObservedRunout - 1), 100 * kRelativeTolerance);
   // The control: the same slope without rain, over 1.5 times the time the rain took to fail it.
   const Outcome dry = simulate(false, 1.5 * wet.onset);
   EXPECT_LT(dry.onset, 0) << "the slope failed without rain at t = " << dry.onset << " s";
+}
+
+// Known failure (the header says why: the assumed section governs the runout): the deposit's tip
+// against Knill's (1996) 29 m, within the issue's 25%. Measured 9.1 m (−69%).
+TEST(FeiTsuiRoad2D, RunoutAgainstKnillKnownFailure) {
+  const Outcome& wet = with_rain();
+  ASSERT_TRUE(wet.at_rest) << "the deposit still moving at t = " << wet.end << " s";
+  const double runout = wet.tip.deposit - kToe;
+  std::printf("runout %.2f m against %.0f m observed (%+.0f%%; within %.0f%% asked)\n", runout, kObservedRunout,
+              100 * (runout / kObservedRunout - 1), 100 * kRelativeTolerance);
+  EXPECT_NEAR(runout / kObservedRunout, 1.0, kRelativeTolerance);
+}
+
+// Known failure (issue 13, walls that hold): no soil particle may leave through the decomposed
+// tuff's dummy layers. Measured 3 of 802 lost (one 12 m inside the tuff at 46 m/s, docs/cases.md).
+TEST(FeiTsuiRoad2D, NoSoilLeavesThroughTheTuffKnownFailure) {
+  const Outcome& wet = with_rain();
+  ASSERT_GT(wet.soil, 0u);
+  EXPECT_EQ(wet.lost, 0u) << wet.lost << " of " << wet.soil << " soil particles left the domain";
 }
 
 }  // namespace

@@ -144,6 +144,7 @@ TEST(LandslideTsunami2d, WaveReachesGaugesInOrderAndGauge1MatchesHellerHager) {
   EXPECT_EQ(n1.water, n0.water);
   EXPECT_EQ(n1.soil, n0.soil);
   EXPECT_EQ(n1.outside, 0u);
+  EXPECT_EQ(n1.lost, 0u);
   EXPECT_LT(deepest, wall_thickness) << "a particle crossed the slope's or the floor's dummy layers";
 }
 

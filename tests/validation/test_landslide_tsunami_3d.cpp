@@ -30,6 +30,7 @@ TEST(LandslideTsunami3d, LoadsAndRunsAFewSteps) {
   EXPECT_EQ(n1.water, n0.water);
   EXPECT_EQ(n1.soil, n0.soil);
   EXPECT_EQ(n1.outside, 0u);
+  EXPECT_EQ(n1.lost, 0u);
   EXPECT_GT(speed, 0.0);
   EXPECT_TRUE(std::isfinite(speed));
 }
