@@ -25,6 +25,7 @@ constexpr double kG = 9.81, kWaterDensity = 1000.0, kGrainDensity = 2650.0, kPor
 struct Statics {
   double pore_pressure = 0, effective_stress = 0, water_pressure = 0;  // worst errors over the scales
   double soil_speed = 0, water_speed = 0, displacement = 0;
+  std::size_t soil = 0, water = 0;  // particles compared
 };
 
 // Errors of a frame against the statics above, over ρ_w g (z_s − 0) and (ρ_sat − ρ_w) g H.
@@ -52,12 +53,14 @@ Statics statics(const FieldFrame& f) {
     if (f.phase[i] == std::uint8_t(Phase::water)) {
       s.water_pressure = std::max(s.water_pressure, std::fabs(p->values[i] - hydrostatic) / pressure_scale);
       s.water_speed = std::max(s.water_speed, speed);
+      ++s.water;
     } else if (f.phase[i] == std::uint8_t(Phase::soil)) {
       const double buoyant = -(rho_sat - kWaterDensity) * kG * (top - z);
       s.pore_pressure = std::max(s.pore_pressure, std::fabs(p_w->values[i] - hydrostatic) / pressure_scale);
       s.effective_stress = std::max(s.effective_stress, std::fabs(sigma->values[6 * i + 2] - buoyant) / stress_scale);
       s.soil_speed = std::max(s.soil_speed, speed);
       s.displacement = std::max(s.displacement, std::hypot(u->values[3 * i], u->values[3 * i + 2]));
+      ++s.soil;
     }
   }
   return s;
@@ -75,6 +78,9 @@ TEST(SubmergedLayer, HydrostaticPorePressureAndBuoyantWeightWithoutDrift) {
                 name, s.pore_pressure, s.effective_stress,
                 s.water_pressure, s.soil_speed, s.water_speed, s.displacement);
   for (const Statics& s : {half, end}) {
+    // 20 × 20 soil particles (0.2 m at dp 0.01 m) under 20 × 20 of water.
+    EXPECT_EQ(s.soil, 400u);
+    EXPECT_EQ(s.water, 400u);
     EXPECT_LT(s.pore_pressure, 0.02);
     EXPECT_LT(s.effective_stress, 0.02);
     EXPECT_LT(s.water_pressure, 0.02);

@@ -44,14 +44,17 @@ Layer layer_of(const testing::CaseRun& run) {
   return l;
 }
 
-// Largest |u_SPH − u_Terzaghi| / u_0 over the layer's particles (not the load layer).
-double worst_error(const FieldFrame& f, const Layer& l, double time, bool print) {
+// Largest |u_SPH − u_Terzaghi| / u_0 over the layer's particles (not the load layer); `checked`
+// counts them.
+double worst_error(const FieldFrame& f, const Layer& l, double time, bool print, std::size_t* checked) {
   const auto* p = f.find("pore_pressure");
   const double tv = reference::time_factor(l.cv, time, l.top);
   double worst = 0;
+  *checked = 0;
   for (std::size_t i = 0; i < f.size(); ++i) {
     const double z = f.position[3 * i + 2];
     if (f.phase[i] != std::uint8_t(Phase::soil) || z > l.height) continue;
+    ++*checked;
     const double excess = p->values[i] - 1000.0 * 9.81 * (l.top - z);
     const double expected = l.u0 * reference::excess_pore_pressure_ratio(z / l.top, tv);
     worst = std::max(worst, std::fabs(excess - expected) / l.u0);
@@ -67,7 +70,10 @@ void consolidate(const std::vector<std::string>& overrides) {
   std::printf("q = %.1f Pa, u0 = %.1f Pa, c_v = %.4f m²/s, H = %.3f m\n", l.load, l.u0, l.cv, l.top);
   for (double tv : {0.02, 0.05, 0.2, 0.5}) {
     run.run_until(tv * l.top * l.top / l.cv);
-    const double worst = worst_error(run.engine->frame(), l, run.engine->time(), std::getenv("CASCADE_PRINT"));
+    std::size_t checked = 0;
+    const double worst =
+        worst_error(run.engine->frame(), l, run.engine->time(), std::getenv("CASCADE_PRINT"), &checked);
+    EXPECT_EQ(checked, 300u) << "the layer: 10 columns (0.1 m, periodic) of 30 particles (0.3 m at dp 0.01 m)";
     std::printf("  T_v = %.2f (t = %.4f s, %llu steps): worst |u - u_Terzaghi| = %.2f%% of u0\n", tv,
                 run.engine->time(), (unsigned long long)run.engine->step_count(), 100 * worst);
     if (tv >= 0.05) EXPECT_LT(worst, 0.05) << "T_v = " << tv;
