@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -451,11 +452,46 @@ void require_utf8(const std::string& text, const std::string& file_name) {
                   "accents, for one, are not)", line, column, file_name);
 }
 
+// The first line (1-based) that opens a quoted string and does not close it, or 0. YAML lets a
+// quoted scalar run on over lines, so a forgotten quote swallowed the keys after it and yaml-cpp
+// reported the consequence far below ("key 'dimensions' is missing", or "end of map not found" at
+// the next quote), not the cause (issue 14). A case's strings are one line each, so such a line
+// is refused where it is.
+int first_unclosed_quote_line(const std::string& text) {
+  int line = 1;
+  char open = 0;  // the quote character of the string being read, 0 outside a string
+  bool comment = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      if (open) return line;
+      ++line, comment = false;
+      continue;
+    }
+    if (comment) continue;
+    if (open == '"' && c == '\\') {
+      ++i;  // an escape inside double quotes
+    } else if (open == '\'' && c == '\'' && i + 1 < text.size() && text[i + 1] == '\'') {
+      ++i;  // '' inside single quotes
+    } else if (open && c == open) {
+      open = 0;
+    } else if (!open && (c == '"' || c == '\'') && (i == 0 || std::strchr(" \t\n:[{,-", text[i - 1]))) {
+      open = c;
+    } else if (!open && c == '#' && (i == 0 || std::strchr(" \t\n", text[i - 1]))) {
+      comment = true;
+    }
+  }
+  return open ? line : 0;
+}
+
 // load_case_text and load_case_file: a case file has a folder, from which its hyetograph is read;
 // a case given as text has none, and a hyetograph in it is left for check_spec to refuse.
 pb::ScenarioSpec load_case(const std::string& yaml_text, const std::vector<CaseOverride>& overrides,
                            const std::string& file_name, const std::optional<std::filesystem::path>& case_directory) {
   require_utf8(yaml_text, file_name);
+  if (const int quote = first_unclosed_quote_line(yaml_text); quote > 0)
+    throw CaseError("(yaml)", "a quote opened on this line is not closed on it (a case's strings are one line each)",
+                    quote, -1, file_name);
   YamlMapper mapper(file_name, overrides);
   pb::ScenarioSpec spec;
   try {

@@ -39,6 +39,8 @@ BAD_CASES = {
     "duplicate_key": (r"dp", 10, r"is given twice \(first at line 8\)"),
     # Issue 14: a Latin-1 byte was accepted here and failed CreateSimulation with an empty message.
     "latin1_comment": (r"\(encoding\)", 12, r"byte 0xE9 is not UTF-8: save the case file as UTF-8"),
+    # Issue 14: reported as "key 'dimensions' is missing" (the string ran on to the end of the file).
+    "unterminated_quote": (r"\(yaml\)", 5, r"a quote opened on this line is not closed on it"),
     # yaml-cpp reports an unclosed flow sequence where it gives up looking for the `]`, not where the
     # `[` is (line 17): accept the lines up to that point.
     "malformed_yaml": (r"\(yaml\)", range(17, 20), r"end of sequence flow not found"),
