@@ -29,9 +29,9 @@
 #include "server/scenario/case_loader.h"
 #include "server/scenario/engine_setup.h"
 #include "server/scenario/forcing_message.h"
+#include "server/scenario/output_schedule.h"
 #include "server/scenario/particle_builder.h"
 #include "server/scenario/plausible_ranges.h"
-#include "server/scenario/output_schedule.h"
 #include "server/scenario/rain_series.h"
 #include "server/scenario/soil_setup.h"
 #include "server/scenario/stage_setup.h"
@@ -237,13 +237,13 @@ class JournalReplay {
  private:
   static void check_forcing(const std::string& where, const v1::JournalEntry& entry) {
     const v1::Forcing& f = entry.new_forcing();
+    const auto check = [&](const std::string& field, const PlausibleRange& range, double value) {
+      if (const auto message = implausible(range, value)) throw std::runtime_error(where + field + " " + *message);
+    };
     for (const auto& field : entry.update_mask()) {
-      if (field == "rainfall.intensity")
-        if (const auto message = implausible(kRainfallIntensity, f.rainfall().intensity()))
-          throw std::runtime_error(where + "rainfall.intensity " + *message);
-      if ((field == "ponding.p_max" && !std::isfinite(f.ponding().p_max())) ||
-          (field == "ponding.p_min" && f.ponding().has_p_min() && !std::isfinite(f.ponding().p_min())))
-        throw std::runtime_error(where + field + " is not a finite number");
+      if (field == "rainfall.intensity") check(field, kRainfallIntensity, f.rainfall().intensity());
+      if (field == "ponding.p_max") check(field, kSurfacePressure, f.ponding().p_max());
+      if (field == "ponding.p_min" && f.ponding().has_p_min()) check(field, kSurfacePressure, f.ponding().p_min());
     }
   }
 

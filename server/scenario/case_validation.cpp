@@ -704,13 +704,13 @@ class SpecChecker {
         error(point_key + ".time", "must be later than the time of the point before (" + number_text(point.time()) +
                                        " <= " + number_text(h.rainfall(i - 1).time()) + ")");
     }
-    finite(key + ".ponding_pressure", h.ponding_pressure());
+    plausible(key + ".ponding_pressure", kSurfacePressure, h.ponding_pressure());
     const double bulk = smallest_bulk_modulus();
     if (!(h.ponding_pressure() > -bulk))
       error(key + ".ponding_pressure", "must be above -K_w = " + number_text(-bulk) + " Pa (is " +
                                            number_text(h.ponding_pressure()) + ")");
     if (h.has_drying_pressure()) {
-      finite(key + ".drying_pressure", h.drying_pressure());
+      plausible(key + ".drying_pressure", kSurfacePressure, h.drying_pressure());
       if (!(h.drying_pressure() < h.ponding_pressure()))
         error(key + ".drying_pressure", "must be below ponding_pressure (" + number_text(h.drying_pressure()) +
                                             " >= " + number_text(h.ponding_pressure()) + ")");

@@ -124,12 +124,12 @@ grpc::Status check_update_forcing(const v1::UpdateForcingRequest& request, const
     } else if (path == "ponding.p_max") {
       const double p = f.ponding().p_max();
       if (!std::isfinite(p)) return invalid("forcing.ponding.p_max", "is not a finite number");
-      if (std::abs(p) > kMaxPondingPressure) return invalid("forcing.ponding.p_max", number(p) + " Pa is beyond ±1e8 Pa");
+      if (const auto message = implausible(kSurfacePressure, p)) return invalid("forcing.ponding.p_max", *message);
       p_max_set = true;
     } else if (path == "ponding.p_min" && f.ponding().has_p_min()) {
       const double p = f.ponding().p_min();
       if (!std::isfinite(p)) return invalid("forcing.ponding.p_min", "is not a finite number");
-      if (std::abs(p) > kMaxPondingPressure) return invalid("forcing.ponding.p_min", number(p) + " Pa is beyond ±1e8 Pa");
+      if (const auto message = implausible(kSurfacePressure, p)) return invalid("forcing.ponding.p_min", *message);
       p_min_set = true;
     }
   }

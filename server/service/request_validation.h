@@ -14,7 +14,6 @@ namespace cascade::service {
 
 // Largest values accepted; beyond them a request is taken for a mistake.
 constexpr std::uint64_t kMaxStepsPerRequest = 10'000'000;
-constexpr double kMaxPondingPressure = 1e8;      // Pa, |p_max| and |p_min|
 constexpr std::uint32_t kMaxStride = 1'000'000;
 constexpr std::size_t kMaxCaseYamlBytes = 1 << 20;
 constexpr double kMinWatchInterval = 0.05, kMaxWatchInterval = 3600;  // s of wall time

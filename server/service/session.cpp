@@ -8,8 +8,8 @@
 #include <cstdio>
 
 #include "server/scenario/engine_setup.h"
-#include "server/scenario/output_schedule.h"
 #include "server/scenario/forcing_message.h"
+#include "server/scenario/output_schedule.h"
 #include "server/scenario/rain_series.h"
 #include "server/scenario/stage_setup.h"
 

@@ -233,6 +233,9 @@ class BadJournals(unittest.TestCase):
     RAIN = ('{"step":"3","time":6,"caller":"local","command":"update_forcing","update_mask":["rainfall.intensity"],'
             '"old_forcing":{"rainfall":{"intensity":1e-06},"ponding":{}},"new_forcing":{"rainfall":{"intensity":%s},'
             '"ponding":{}}}')
+    PONDING = ('{"step":"3","time":6,"caller":"local","command":"update_forcing","update_mask":["ponding.p_max"],'
+               '"old_forcing":{"rainfall":{"intensity":1e-06},"ponding":{}},"new_forcing":{"rainfall":{"intensity":1e-06},'
+               '"ponding":{"p_max":%s}}}')
     JOURNALS = {
         "other_case": ([CREATE % "hydrostatic_tank_2d"], r"step 0: the journal is of case 'hydrostatic_tank_2d', "
                                                          r"not 'rain_column'"),
@@ -240,6 +243,8 @@ class BadJournals(unittest.TestCase):
                      r"step 3: rainfall\.intensity must be in \[-1, 1\] m/s \(is nan\)"),
         "huge_rain": ([CREATE % "rain_column", RAIN % "1e10"],
                       r"step 3: rainfall\.intensity must be in \[-1, 1\] m/s \(is 1e\+10\)"),
+        "nan_ponding": ([CREATE % "rain_column", PONDING % '"NaN"'],
+                        r"step 3: ponding\.p_max must be in \[-100000000, 100000000\] Pa \(is nan\)"),
     }
 
     def test_refused_before_the_first_step(self):
