@@ -73,6 +73,44 @@ def import_h5py():
         raise AssertionError(f"h5py is missing from {sys.executable}: install python3-h5py (Debian)")
 
 
+def record_validation(test, case, reference, metric, measured, reference_value, tolerance=0.0, relative=False,
+                      bound="within", tolerance_source=""):
+    """States a validation figure for docs/validation.md (the Python twin of
+    tests/validation/validation_table.h: one JSON line in <build>/validation/cli.SCRIPT.Class.method.jsonl,
+    rendered by scripts/render_validation.py) and returns whether it holds; the caller asserts it.
+    bound: "within" (|measured - reference| <= tolerance, a fraction of |reference| when relative),
+    "at_most" or "at_least" (one-sided limits)."""
+    import datetime
+    import json
+    import math
+    if bound == "at_most":
+        passed = measured <= reference_value
+    elif bound == "at_least":
+        passed = measured >= reference_value
+    else:
+        allowed = tolerance * abs(reference_value) if relative else tolerance
+        passed = abs(measured - reference_value) <= allowed
+    passed = bool(passed and math.isfinite(measured))
+    name = "cli." + pathlib.Path(sys.argv[0]).stem.removeprefix("test_") + "." + ".".join(test.id().split(".")[-2:])
+    figure = {"test": name, "case": case, "reference": reference, "metric": metric,
+              "measured": measured if math.isfinite(measured) else None, "reference_value": reference_value,
+              "tolerance": tolerance, "relative": relative, "bound": bound, "tolerance_source": tolerance_source,
+              "pass": passed, "known_failure": name.endswith("KnownFailure"),
+              "measured_at": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")}
+    folder = CASCADE.parent.parent / "validation"
+    folder.mkdir(exist_ok=True)
+    path = folder / f"{name}.jsonl"
+    mode = "a" if name in _recorded_tests else "w"  # a test's figures of an earlier run are replaced
+    _recorded_tests.add(name)
+    with open(path, mode, encoding="utf-8") as f:
+        f.write(json.dumps(figure, ensure_ascii=False) + "\n")
+    print(f"validation: {case}: {metric} = {measured} against {reference_value} ({reference})")
+    return passed
+
+
+_recorded_tests = set()
+
+
 def fixture(name):
     """A test case file: fixture("rain_column") → tests/cli/fixtures/rain_column.yaml."""
     return SOURCE_DIR / "tests" / "cli" / "fixtures" / f"{name}.yaml"

@@ -32,6 +32,7 @@
 #include "server/io/probe_sampler.h"
 #include "tests/validation/case_run.h"
 #include "tests/validation/slide_counts.h"
+#include "tests/validation/validation_table.h"
 
 namespace cascade {
 namespace {
@@ -86,7 +87,7 @@ TEST(LandslideTsunami2d, WaveReachesGaugesInOrderAndGauge1MatchesHellerHager) {
   std::vector<double> time;
   std::vector<std::vector<double>> eta(4);
   double centroid_z = 0, centroid_speed = 0, impact_speed = NAN, impact_time = NAN;
-  double deepest = deepest_in_wall(start), deepest_time = 0;
+  double deepest = deepest_in_wall(start);
   soil_centroid(start, &centroid_z, &centroid_speed);
   for (double t = kSampleInterval; t <= run.spec.end_time() + 1e-9; t += kSampleInterval) {
     run.run_until(t);
@@ -94,8 +95,7 @@ TEST(LandslideTsunami2d, WaveReachesGaugesInOrderAndGauge1MatchesHellerHager) {
     const std::vector<double> values = sampler.sample(f);
     time.push_back(f.time);
     for (int g = 0; g < 4; ++g) eta[g].push_back(values[g] - still[g]);
-    const double depth = deepest_in_wall(f);
-    if (depth > deepest) deepest = depth, deepest_time = f.time;
+    deepest = std::max(deepest, deepest_in_wall(f));
     const double previous_z = centroid_z, previous_speed = centroid_speed;
     soil_centroid(f, &centroid_z, &centroid_speed);
     if (std::isnan(impact_speed) && centroid_z <= kDepth) {  // linear in between the samples
@@ -104,8 +104,7 @@ TEST(LandslideTsunami2d, WaveReachesGaugesInOrderAndGauge1MatchesHellerHager) {
       impact_time = f.time - (1 - w) * kSampleInterval;
     }
   }
-  const FieldFrame end = run.engine->frame();
-  const PhaseCounts n1 = count(end, run.spec);
+  const PhaseCounts n1 = count(run.engine->frame(), run.spec);
   const double wall_thickness = std::ceil(2 * run.config.h / run.config.dp - 1e-9) * run.config.dp;
 
   const double gauge1_max = *std::max_element(eta[0].begin(), eta[0].end());
@@ -126,13 +125,7 @@ TEST(LandslideTsunami2d, WaveReachesGaugesInOrderAndGauge1MatchesHellerHager) {
                          std::sqrt(std::cos(6.0 / 7.0 * kSlopeAngle));
   const double predicted = 4.0 / 9.0 * std::pow(impulse, 0.8) * kDepth;
   std::printf("slide centroid at the still water level at t = %.3f s, speed %.3f m/s: F = %.3f, S = %.3f, "
-              "M = %.3f, P = %.3f; Heller-Hager a_M = %.2f mm, gauge 1 %.2f mm (%+.0f%%)\n",
-              impact_time, impact_speed, froude, relative_thickness, relative_mass, impulse, 1e3 * predicted,
-              1e3 * crest[0].amplitude, 100 * (crest[0].amplitude / predicted - 1));
-  std::printf("particles: water %zu -> %zu, soil %zu -> %zu, outside the domain %zu; deepest inside the slope or "
-              "floor %.2f mm (t = %.3f s; at the end %.2f mm; the dummy layers %.0f mm)\n",
-              n0.water, n1.water, n0.soil, n1.soil, n1.outside, 1e3 * deepest, deepest_time,
-              1e3 * deepest_in_wall(end), 1e3 * wall_thickness);
+              "M = %.3f, P = %.3f\n", impact_time, impact_speed, froude, relative_thickness, relative_mass, impulse);
 
   ASSERT_TRUE(std::isfinite(impact_speed)) << "the slide's centroid never reached the water";
   for (int g = 0; g < 4; ++g) ASSERT_TRUE(std::isfinite(crest[g].time)) << names[g] << " saw no wave";
@@ -140,12 +133,36 @@ TEST(LandslideTsunami2d, WaveReachesGaugesInOrderAndGauge1MatchesHellerHager) {
     EXPECT_GT(crest[g].time, crest[g - 1].time) << names[g] << " before " << names[g - 1];
     EXPECT_LT(crest[g].amplitude, crest[g - 1].amplitude) << names[g] << " higher than " << names[g - 1];
   }
-  EXPECT_NEAR(crest[0].amplitude / predicted, 1.0, 0.3);
-  EXPECT_EQ(n1.water, n0.water);
-  EXPECT_EQ(n1.soil, n0.soil);
-  EXPECT_EQ(n1.outside, 0u);
-  EXPECT_EQ(n1.lost, 0u);
-  EXPECT_LT(deepest, wall_thickness) << "a particle crossed the slope's or the floor's dummy layers";
+  const std::string case_name = "Landslide into a flume 2D (cases/landslide_tsunami_2d.yaml)";
+  char heller_hager[192];
+  std::snprintf(heller_hager, sizeof heller_hager,
+                "Heller & Hager (2010), J. Waterway Port Coastal Ocean Eng. 136(3):145-155, a_M = (4/9) P^(4/5) h; "
+                "F = %.2f here, below its tested 0.86-6.83", froude);
+  CASCADE_VALIDATE({.case_name = case_name, .reference = heller_hager,
+                    .metric = "leading crest at gauge 1 (x/h = 3) [mm]", .measured = 1e3 * crest[0].amplitude,
+                    .reference_value = 1e3 * predicted, .tolerance = 0.3, .relative = true,
+                    .tolerance_source = "the relation's data scatter as remembered; no stored source states it "
+                                        "(docs/cases.md, \"Landslide tsunami\")"});
+  const std::string conservation = "mass conservation: a particle's mass is fixed, so a phase's count is its mass";
+  CASCADE_VALIDATE({.case_name = case_name, .reference = conservation,
+                    .metric = "water particles gained or lost, |N_end − N_start|",
+                    .measured = std::abs(double(n1.water) - double(n0.water)), .reference_value = 0,
+                    .bound = testing::Bound::at_most, .tolerance_source = "exact"});
+  CASCADE_VALIDATE({.case_name = case_name, .reference = conservation,
+                    .metric = "soil particles gained or lost, |N_end − N_start|",
+                    .measured = std::abs(double(n1.soil) - double(n0.soil)), .reference_value = 0,
+                    .bound = testing::Bound::at_most, .tolerance_source = "exact"});
+  CASCADE_VALIDATE({.case_name = case_name, .reference = "no particle leaves the domain",
+                    .metric = "particles outside the domain at the end", .measured = double(n1.outside),
+                    .reference_value = 0, .bound = testing::Bound::at_most, .tolerance_source = "exact"});
+  CASCADE_VALIDATE({.case_name = case_name, .reference = "no particle leaves the domain",
+                    .metric = "particles flagged lost at the end", .measured = double(n1.lost),
+                    .reference_value = 0, .bound = testing::Bound::at_most, .tolerance_source = "exact"});
+  CASCADE_VALIDATE({.case_name = case_name,
+                    .reference = "impermeable walls: no particle through the dummy layers, ⌈2h/dp⌉ dp deep",
+                    .metric = "deepest water or soil particle inside the slope or floor, 5 ms samples [mm]",
+                    .measured = 1e3 * deepest, .reference_value = 1e3 * wall_thickness,
+                    .bound = testing::Bound::at_most, .tolerance_source = "exact: the dummy layers' depth"});
 }
 
 }  // namespace

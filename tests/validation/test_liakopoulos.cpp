@@ -45,6 +45,7 @@
 
 #include "tests/reference/liakopoulos_reference.h"
 #include "tests/validation/case_run.h"
+#include "tests/validation/validation_table.h"
 
 namespace cascade {
 namespace {
@@ -86,6 +87,9 @@ Layers layers(const FieldFrame& f) {
 
 TEST(Liakopoulos, PorePressureProfilesAgainstOpenGeoSys) {
   constexpr double kAlpha = 100.0;
+  const std::string case_name = "Liakopoulos drainage (cases/liakopoulos.yaml, dp = 0.05 m, K_sat × 100)";
+  const std::string ogs = "OpenGeoSys RICHARDS_MECHANICS, LiakopoulosHM benchmark (W. Wang 2020; "
+                          "tests/reference/liakopoulos_reference.h)";
   testing::CaseRun run("liakopoulos.yaml", accelerated(kAlpha));
   ASSERT_GT(run.initialisation_steps, 0u);
   ASSERT_DOUBLE_EQ(run.engine->time(), 0.0);  // the clock restarts after the initialisation
@@ -96,24 +100,25 @@ TEST(Liakopoulos, PorePressureProfilesAgainstOpenGeoSys) {
     const Layers now = layers(run.engine->frame());
     if (k == 0) at300 = now;
     const double* pressure = Reference::pressure(k);
-    const double* displacement = Reference::displacement(k);
     const double scale = std::fabs(pressure[Reference::points - 1]);  // |p_w| at the top
-    double worst = 0, worst_z = 0;
-    for (std::size_t l = 0; l < now.z.size(); ++l) {
-      const double error = std::fabs(now.pressure[l] - Reference::interpolate(pressure, now.z[l]));
-      if (error > worst) worst = error, worst_z = now.z[l];
-    }
-    const double top_z = now.z.back();
-    const double p_top = now.pressure.back(), p_top_ref = Reference::interpolate(pressure, top_z);
-    const double u_top = now.settlement.back(), u_top_ref = Reference::interpolate(displacement, top_z);
-    std::printf("t = %.0f s (%.3f s at alpha = %.0f, %llu steps): worst |p_SPH - p_OGS| = %.0f Pa (%.1f%% of the "
-                "top's %.0f Pa) at z = %.3f m; top layer (z = %.3f m) p_w %.0f Pa (OGS %.0f), u_z %.3e m (OGS "
-                "%.3e, %+.1f%%)\n",
-                t, run.engine->time(), kAlpha, (unsigned long long)run.engine->step_count(), worst,
-                100 * worst / scale, scale, worst_z, top_z, p_top, p_top_ref, u_top, u_top_ref,
-                100 * (u_top / u_top_ref - 1));
-    EXPECT_LT(worst, 0.10 * scale) << "t = " << t << " s";
-    EXPECT_NEAR(u_top, u_top_ref, 0.20 * std::fabs(u_top_ref)) << "t = " << t << " s";
+    double worst = 0;
+    for (std::size_t l = 0; l < now.z.size(); ++l)
+      worst = std::max(worst, std::fabs(now.pressure[l] - Reference::interpolate(pressure, now.z[l])));
+    char metric[160];
+    std::snprintf(metric, sizeof metric, "largest layer |p_w − p_OGS| / |p_OGS| at the top, t = %.0f s", t);
+    CASCADE_VALIDATE({.case_name = case_name, .reference = ogs, .metric = metric, .measured = worst / scale,
+                      .reference_value = 0.10, .bound = testing::Bound::at_most,
+                      .tolerance_source = "the differences from OGS listed in the file (K_w, Eq. 43a's γ_w, 20 "
+                                          "particles) and the spread of published solutions (Schrefler & Scotta "
+                                          "2001, Lewis & Schrefler 1998, OGS, the paper's SPH): some 10% of the top "
+                                          "suction in the first 10 minutes"});
+    std::snprintf(metric, sizeof metric, "top layer's settlement u_z (z = %.3f m), t = %.0f s (m)", now.z.back(), t);
+    CASCADE_VALIDATE({.case_name = case_name, .reference = ogs, .metric = metric, .measured = now.settlement.back(),
+                      .reference_value = Reference::interpolate(Reference::displacement(k), now.z.back()),
+                      .tolerance = 0.20, .relative = true,
+                      .tolerance_source = "the pressure's differences (K_w, Eq. 43a's γ_w, 20 particles) plus some 8% "
+                                          "at 300 s from the initialisation's excess pore pressure consolidating; "
+                                          "20% itself not derived"});
   }
 
   // The scaling in time holds: half the acceleration gives the same profile at 300 s.
@@ -126,9 +131,12 @@ TEST(Liakopoulos, PorePressureProfilesAgainstOpenGeoSys) {
   for (std::size_t l = 0; l < other.z.size(); ++l)
     largest = std::max(largest, std::fabs(other.pressure[l] - at300.pressure[l]));
   const double scale = std::fabs(Reference::pressure(0)[Reference::points - 1]);
-  std::printf("alpha = %.0f against %.0f at t = 300 s: largest layer difference %.2f Pa\n", kCheckAlpha, kAlpha,
-              largest);
-  EXPECT_LT(largest, 0.01 * scale);
+  CASCADE_VALIDATE({.case_name = case_name,
+                    .reference = "the same case at α = 50: quasi-static, the solution depends on K t only",
+                    .metric = "largest layer |p_w(α = 50) − p_w(α = 100)| / |p_OGS| at the top, t = 300 s",
+                    .measured = largest / scale, .reference_value = 0.01, .bound = testing::Bound::at_most,
+                    .tolerance_source = "1% of the top pressure, not derived in the test (no independent source "
+                                        "yet)"});
 }
 
 }  // namespace

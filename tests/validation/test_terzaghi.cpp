@@ -20,6 +20,7 @@
 
 #include "tests/reference/terzaghi.h"
 #include "tests/validation/case_run.h"
+#include "tests/validation/validation_table.h"
 
 namespace cascade {
 namespace {
@@ -67,16 +68,24 @@ double worst_error(const FieldFrame& f, const Layer& l, double time, bool print,
 void consolidate(const std::vector<std::string>& overrides) {
   testing::CaseRun run("terzaghi.yaml", overrides);
   const Layer l = layer_of(run);
-  std::printf("q = %.1f Pa, u0 = %.1f Pa, c_v = %.4f m²/s, H = %.3f m\n", l.load, l.u0, l.cv, l.top);
+  const double water_bulk_modulus = run.spec.materials(0).soil().water_bulk_modulus();
+  // T_v = 0.02 is counted (and printed with CASCADE_PRINT) but not compared: the sudden load still
+  // rings the column there (docs/physics.md, "Terzaghi consolidation").
   for (double tv : {0.02, 0.05, 0.2, 0.5}) {
     run.run_until(tv * l.top * l.top / l.cv);
     std::size_t checked = 0;
     const double worst =
         worst_error(run.engine->frame(), l, run.engine->time(), std::getenv("CASCADE_PRINT"), &checked);
     EXPECT_EQ(checked, 300u) << "the layer: 10 columns (0.1 m, periodic) of 30 particles (0.3 m at dp 0.01 m)";
-    std::printf("  T_v = %.2f (t = %.4f s, %llu steps): worst |u - u_Terzaghi| = %.2f%% of u0\n", tv,
-                run.engine->time(), (unsigned long long)run.engine->step_count(), 100 * worst);
-    if (tv >= 0.05) EXPECT_LT(worst, 0.05) << "T_v = " << tv;
+    if (tv < 0.05) continue;
+    char metric[160];
+    std::snprintf(metric, sizeof metric,
+                  "largest |u − u_Terzaghi| / u_0 over the layer's particles, T_v = %.2f, K_w = %g MPa", tv,
+                  water_bulk_modulus / 1e6);
+    CASCADE_VALIDATE({.case_name = "Terzaghi consolidation (cases/terzaghi.yaml)",
+                      .reference = "Terzaghi (1925, 1943) series, compressible pore water (tests/reference/terzaghi.h)",
+                      .metric = metric, .measured = worst, .reference_value = 0.05, .bound = testing::Bound::at_most,
+                      .tolerance_source = "the issue's tolerance: 5% of u_0 at every particle"});
   }
 }
 
