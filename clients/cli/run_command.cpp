@@ -17,6 +17,7 @@
 
 #include "clients/cli/progress.h"
 #include "server/core/engine.h"
+#include "server/core/free_cores.h"
 #include "server/io/hdf5_writer.h"
 #include "server/io/journal.h"
 #include "server/io/probe_csv_writer.h"
@@ -282,6 +283,16 @@ int run_command(const std::vector<std::string>& args) {
     return 2;
   }
   if (options.threads > 0) omp_set_num_threads(options.threads);
+  // Without --threads, the team takes the cores that other processes leave free, measured again
+  // about once a second while the run steps (free_cores.h).
+  const CoreShare::Running running;
+  int team = omp_get_max_threads();
+  auto size_team = [&] {
+    if (options.threads > 0) return;
+    const int threads = CoreShare::of_this_process().threads_per_simulation();
+    if (threads != team) omp_set_num_threads(team = threads);
+  };
+  size_team();
 
   RunSummary summary;
   summary.case_name = spec.name();
@@ -303,11 +314,12 @@ int run_command(const std::vector<std::string>& args) {
     Outputs outputs(spec, options.out_dir, config.h, config.water_density * std::pow(config.dp, config.dimensions));
     std::fprintf(stderr,
                  "cascade run: %s, %zu particles (%zu water, %zu soil, %zu boundary), dp = %g m, h = %g m, "
-                 "c0 = %.3f m/s, %s on %s with %d threads, until t = %g s\n",
+                 "c0 = %.3f m/s, %s on %s with %d threads%s, until t = %g s\n",
                  spec.name().c_str(), particles.size(), std::size_t(summary.particles.water),
                  std::size_t(summary.particles.soil), std::size_t(summary.particles.boundary), config.dp, config.h,
                  config.sound_speed,
-                 summary.precision.c_str(), engine->device_name(), omp_get_max_threads(), end_time);
+                 summary.precision.c_str(), engine->device_name(), omp_get_max_threads(),
+                 options.threads > 0 ? "" : " (the cores that other processes leave free)", end_time);
     if (spec.has_initialisation()) {
       // Before t = 0, without outputs: the main stage and every output start at its end.
       std::fprintf(stderr, "cascade run: initialisation stage of %g s\n", spec.initialisation().duration());
@@ -341,6 +353,7 @@ int run_command(const std::vector<std::string>& args) {
     record(outputs.observe(*engine, true));
     std::size_t lost = 0;
     while (engine->time() < end_time * (1 - 1e-12)) {
+      size_team();
       if (g_signal.load() != 0) {
         outputs.observe(*engine, true);
         throw SimulationFailure("interrupted by signal " + std::to_string(g_signal.load()) + " at t = " +

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "server/core/free_cores.h"
 #include "server/scenario/engine_setup.h"
 #include "server/scenario/forcing_message.h"
 #include "server/scenario/output_schedule.h"
@@ -225,12 +226,23 @@ Session::Outcome Session::here(grpc::Status status) const {
 }
 
 void Session::run_loop() {
-  if (config_.threads > 0) omp_set_num_threads(config_.threads);
+  // Without a thread count the team takes its share of the cores that other processes leave free,
+  // among this server's simulations that are stepping (free_cores.h).
+  std::optional<CoreShare::Running> stepping;
+  int team = omp_get_max_threads();
+  auto size_team = [&] {
+    const int threads = config_.threads > 0 ? config_.threads : CoreShare::of_this_process().threads_per_simulation();
+    if (threads != team) omp_set_num_threads(team = threads);
+  };
+  stepping.emplace();  // the initialisation stage steps too
+  size_team();
   initialise();
+  stepping.reset();
   for (;;) {
     std::deque<Command> commands;
     {
       std::unique_lock lock(mutex_);
+      if (state_ != v1::Simulation::RUNNING) stepping.reset();  // an idle simulation takes no share
       wake_.wait(lock, [&] { return stop_requested_ || !queue_.empty() || state_ == v1::Simulation::RUNNING; });
       if (stop_requested_) break;
       commands.swap(queue_);
@@ -250,6 +262,8 @@ void Session::run_loop() {
     const bool running = state_ == v1::Simulation::RUNNING && !stop_requested_;
     lock.unlock();
     if (!running) continue;
+    if (!stepping) stepping.emplace();
+    size_team();
     try {
       advance();
     } catch (const std::exception& e) {  // the journal could not be written: nothing may go on

@@ -47,7 +47,7 @@ struct SessionConfig {
   EngineConfig engine;               // from engine_config(spec, particles, ...)
   EngineFactory make_engine;         // run on the solver thread
   std::filesystem::path directory;   // holds journal.jsonl
-  int threads = 0;                   // OpenMP threads of the solver thread; 0: OpenMP's default
+  int threads = 0;                   // OpenMP threads of the solver thread; 0: its share of the free cores
   std::string caller;                // who created it (journal)
   // Set: the engine takes the checkpoint's state (no initialisation stage), journal.jsonl becomes
   // the checkpoint's journal (the one it replaces is kept as journal.jsonl.replaced-N) and the
