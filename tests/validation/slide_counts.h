@@ -8,10 +8,12 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 #include "cascade/v1/scenario.pb.h"
 #include "server/core/field_frame.h"
 #include "server/core/types.h"
+#include "tests/validation/validation_table.h"
 
 namespace cascade::testing {
 
@@ -37,6 +39,28 @@ inline PhaseCounts count(const FieldFrame& f, const v1::ScenarioSpec& spec) {
     if (f.phase[i] == std::uint8_t(Phase::soil)) ++n.soil;
   }
   return n;
+}
+
+// The four figures of "nothing lost" from the counts at the start and at `when` (e.g. "at the end"):
+// each phase's count (its mass, every particle having one) unchanged, none outside the domain, none
+// flagged lost.
+inline void validate_nothing_lost(const std::string& case_name, const PhaseCounts& start, const PhaseCounts& end,
+                                  const std::string& when) {
+  const std::string conservation = "mass conservation: a particle's mass is fixed, so a phase's count is its mass";
+  CASCADE_VALIDATE({.case_name = case_name, .reference = conservation,
+                    .metric = "water particles gained or lost " + when + ", |N_end − N_start|",
+                    .measured = std::abs(double(end.water) - double(start.water)), .reference_value = 0,
+                    .bound = Bound::at_most, .tolerance_source = "exact"});
+  CASCADE_VALIDATE({.case_name = case_name, .reference = conservation,
+                    .metric = "soil particles gained or lost " + when + ", |N_end − N_start|",
+                    .measured = std::abs(double(end.soil) - double(start.soil)), .reference_value = 0,
+                    .bound = Bound::at_most, .tolerance_source = "exact"});
+  CASCADE_VALIDATE({.case_name = case_name, .reference = "no particle leaves the domain",
+                    .metric = "particles outside the domain " + when, .measured = double(end.outside),
+                    .reference_value = 0, .bound = Bound::at_most, .tolerance_source = "exact"});
+  CASCADE_VALIDATE({.case_name = case_name, .reference = "no particle leaves the domain",
+                    .metric = "particles flagged lost " + when, .measured = double(end.lost), .reference_value = 0,
+                    .bound = Bound::at_most, .tolerance_source = "exact"});
 }
 
 // The soil's centroid height and the speed of its centroid.

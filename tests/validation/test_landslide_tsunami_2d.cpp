@@ -143,21 +143,7 @@ TEST(LandslideTsunami2d, WaveReachesGaugesInOrderAndGauge1MatchesHellerHager) {
                     .reference_value = 1e3 * predicted, .tolerance = 0.3, .relative = true,
                     .tolerance_source = "the relation's data scatter as remembered; no stored source states it "
                                         "(docs/cases.md, \"Landslide tsunami\")"});
-  const std::string conservation = "mass conservation: a particle's mass is fixed, so a phase's count is its mass";
-  CASCADE_VALIDATE({.case_name = case_name, .reference = conservation,
-                    .metric = "water particles gained or lost, |N_end − N_start|",
-                    .measured = std::abs(double(n1.water) - double(n0.water)), .reference_value = 0,
-                    .bound = testing::Bound::at_most, .tolerance_source = "exact"});
-  CASCADE_VALIDATE({.case_name = case_name, .reference = conservation,
-                    .metric = "soil particles gained or lost, |N_end − N_start|",
-                    .measured = std::abs(double(n1.soil) - double(n0.soil)), .reference_value = 0,
-                    .bound = testing::Bound::at_most, .tolerance_source = "exact"});
-  CASCADE_VALIDATE({.case_name = case_name, .reference = "no particle leaves the domain",
-                    .metric = "particles outside the domain at the end", .measured = double(n1.outside),
-                    .reference_value = 0, .bound = testing::Bound::at_most, .tolerance_source = "exact"});
-  CASCADE_VALIDATE({.case_name = case_name, .reference = "no particle leaves the domain",
-                    .metric = "particles flagged lost at the end", .measured = double(n1.lost),
-                    .reference_value = 0, .bound = testing::Bound::at_most, .tolerance_source = "exact"});
+  testing::validate_nothing_lost(case_name, n0, n1, "at the end");
   CASCADE_VALIDATE({.case_name = case_name,
                     .reference = "impermeable walls: no particle through the dummy layers, ⌈2h/dp⌉ dp deep",
                     .metric = "deepest water or soil particle inside the slope or floor, 5 ms samples [mm]",

@@ -8,7 +8,6 @@
 
 #include "tests/validation/case_run.h"
 #include "tests/validation/slide_counts.h"
-#include "tests/validation/validation_table.h"
 
 namespace cascade {
 namespace {
@@ -30,21 +29,7 @@ TEST(LandslideTsunami3d, LoadsAndRunsAFewSteps) {
   EXPECT_GT(n0.water, 10000u);
   EXPECT_GT(n0.soil, 300u);
   const std::string case_name = "Landslide into a flume 3D (cases/landslide_tsunami_3d.yaml)";
-  const std::string conservation = "mass conservation: a particle's mass is fixed, so a phase's count is its mass";
-  CASCADE_VALIDATE({.case_name = case_name, .reference = conservation,
-                    .metric = "water particles gained or lost in 20 steps, |N_end − N_start|",
-                    .measured = std::abs(double(n1.water) - double(n0.water)), .reference_value = 0,
-                    .bound = testing::Bound::at_most, .tolerance_source = "exact"});
-  CASCADE_VALIDATE({.case_name = case_name, .reference = conservation,
-                    .metric = "soil particles gained or lost in 20 steps, |N_end − N_start|",
-                    .measured = std::abs(double(n1.soil) - double(n0.soil)), .reference_value = 0,
-                    .bound = testing::Bound::at_most, .tolerance_source = "exact"});
-  CASCADE_VALIDATE({.case_name = case_name, .reference = "no particle leaves the domain",
-                    .metric = "particles outside the domain after 20 steps", .measured = double(n1.outside),
-                    .reference_value = 0, .bound = testing::Bound::at_most, .tolerance_source = "exact"});
-  CASCADE_VALIDATE({.case_name = case_name, .reference = "no particle leaves the domain",
-                    .metric = "particles flagged lost after 20 steps", .measured = double(n1.lost),
-                    .reference_value = 0, .bound = testing::Bound::at_most, .tolerance_source = "exact"});
+  testing::validate_nothing_lost(case_name, n0, n1, "after 20 steps");
   EXPECT_GT(speed, 0.0);
   EXPECT_TRUE(std::isfinite(speed));
 }
