@@ -59,7 +59,7 @@ void compare(const std::string& name, const std::string& case_file, double inten
     EXPECT_EQ(layers.size(), 75u);
     double worst = 0;
     for (const auto& [z, p] : layers)
-      worst = std::max(worst, std::fabs(p - testing::interpolate(reference.z, reference.pore_pressure, z)));
+      worst = testing::worst_of(worst, std::fabs(p - testing::interpolate(reference.z, reference.pore_pressure, z)));
     char metric[128];
     std::snprintf(metric, sizeof metric, "largest layer |p_w − p_Richards| / ρ_w g H at %.2f day", day);
     CASCADE_VALIDATE({.case_name = name + " (cases/" + case_file + ", dp = 0.04 m)",

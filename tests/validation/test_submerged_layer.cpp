@@ -52,15 +52,15 @@ Statics statics(const FieldFrame& f) {
     const double speed = std::hypot(v->values[3 * i], v->values[3 * i + 2]);
     const double hydrostatic = kWaterDensity * kG * (z_s - z);
     if (f.phase[i] == std::uint8_t(Phase::water)) {
-      s.water_pressure = std::max(s.water_pressure, std::fabs(p->values[i] - hydrostatic) / pressure_scale);
-      s.water_speed = std::max(s.water_speed, speed);
+      s.water_pressure = testing::worst_of(s.water_pressure, std::fabs(p->values[i] - hydrostatic) / pressure_scale);
+      s.water_speed = testing::worst_of(s.water_speed, speed);
       ++s.water;
     } else if (f.phase[i] == std::uint8_t(Phase::soil)) {
       const double buoyant = -(rho_sat - kWaterDensity) * kG * (top - z);
-      s.pore_pressure = std::max(s.pore_pressure, std::fabs(p_w->values[i] - hydrostatic) / pressure_scale);
-      s.effective_stress = std::max(s.effective_stress, std::fabs(sigma->values[6 * i + 2] - buoyant) / stress_scale);
-      s.soil_speed = std::max(s.soil_speed, speed);
-      s.displacement = std::max(s.displacement, std::hypot(u->values[3 * i], u->values[3 * i + 2]));
+      s.pore_pressure = testing::worst_of(s.pore_pressure, std::fabs(p_w->values[i] - hydrostatic) / pressure_scale);
+      s.effective_stress = testing::worst_of(s.effective_stress, std::fabs(sigma->values[6 * i + 2] - buoyant) / stress_scale);
+      s.soil_speed = testing::worst_of(s.soil_speed, speed);
+      s.displacement = testing::worst_of(s.displacement, std::hypot(u->values[3 * i], u->values[3 * i + 2]));
       ++s.soil;
     }
   }

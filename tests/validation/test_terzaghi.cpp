@@ -58,7 +58,7 @@ double worst_error(const FieldFrame& f, const Layer& l, double time, bool print,
     ++*checked;
     const double excess = p->values[i] - 1000.0 * 9.81 * (l.top - z);
     const double expected = l.u0 * reference::excess_pore_pressure_ratio(z / l.top, tv);
-    worst = std::max(worst, std::fabs(excess - expected) / l.u0);
+    worst = testing::worst_of(worst, std::fabs(excess - expected) / l.u0);
     if (print && f.position[3 * i] < 0.01)
       std::printf("    z = %.3f: u/u0 = %.4f, Terzaghi %.4f\n", z, excess / l.u0, expected / l.u0);
   }

@@ -53,6 +53,10 @@ inline bool passes(const Figure& f) {
   return std::abs(f.measured - f.reference_value) <= allowed;
 }
 
+// The larger of the two, NaN once either is: the worst case over a loop, which a NaN value must not
+// pass (std::max(worst, NaN) keeps `worst`).
+inline double worst_of(double worst, double value) { return std::isnan(value) || value > worst ? value : worst; }
+
 namespace validation_detail {
 
 inline std::string json_string(const std::string& s) {
