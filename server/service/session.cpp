@@ -1,6 +1,7 @@
 #include "server/service/session.h"
 
 #include <omp.h>
+#include <pthread.h>
 
 #include <algorithm>
 #include <chrono>
@@ -226,6 +227,9 @@ Session::Outcome Session::here(grpc::Status status) const {
 }
 
 void Session::run_loop() {
+  // Named so that an operator (top -H, ps -L) and the load test (tests/cli/test_server_load.py) can
+  // tell the thread that steps a simulation from the request handlers; at most 15 characters.
+  pthread_setname_np(pthread_self(), "cascade-solver");
   // Without a thread count the team takes its share of the cores that other processes leave free,
   // among this server's simulations that are stepping (free_cores.h).
   std::optional<CoreShare::Running> stepping;

@@ -1,8 +1,9 @@
 """A real cascade-server under load and misuse: 16 watchers and concurrent queries while a
-simulation runs (no errors, the solver's steps/s do not collapse); clients that vanish mid-stream
-(the server keeps serving at the same pace); a simulation that blows up goes to FAILED with the
-reason while another on the same server keeps running."""
+simulation runs (no errors, and the solver's thread is not kept waiting by its clients); clients that
+vanish mid-stream (the server keeps serving at the same pace); a simulation that blows up goes to
+FAILED with the reason while another on the same server keeps running."""
 
+import pathlib
 import subprocess
 import threading
 import time
@@ -22,6 +23,37 @@ def steps_per_second(sim, seconds=MEASURE_SECONDS):
     return (sim.get().status.step - first) / (time.time() - start)
 
 
+def solver_thread(server):
+    """/proc/PID/task/TID of the server's one solver thread (session.cpp names it cascade-solver)."""
+    tasks = [t for t in pathlib.Path(f"/proc/{server.process.pid}/task").iterdir()
+             if (t / "comm").read_text().strip() == "cascade-solver"]
+    assert len(tasks) == 1, f"{len(tasks)} threads named cascade-solver"
+    return tasks[0]
+
+
+def scheduled_seconds(task):
+    """(seconds on a core, seconds runnable but waiting for one) of a thread, from the kernel's
+    scheduler accounts (/proc/PID/task/TID/schedstat, Documentation/scheduler/sched-stats.rst)."""
+    on_core, waiting = (int(x) / 1e9 for x in (task / "schedstat").read_text().split()[:2])
+    return on_core, waiting
+
+
+def solver_time(sim, task, seconds=MEASURE_SECONDS):
+    """How the solver thread spent `seconds` of wall time, as fractions: on a core, waiting for a
+    core (other threads had them: the machine's share), blocked (asleep on a lock or a condition:
+    time the server made it wait); and the steps it took per second on a core."""
+    first_step = sim.get().status.step
+    on_core0, waiting0 = scheduled_seconds(task)
+    start = time.time()
+    time.sleep(seconds)
+    on_core1, waiting1 = scheduled_seconds(task)
+    steps = sim.get().status.step - first_step
+    wall = time.time() - start
+    on_core, waiting = (on_core1 - on_core0) / wall, (waiting1 - waiting0) / wall
+    return {"on_core": on_core, "waiting_for_core": waiting, "blocked": max(0.0, 1 - on_core - waiting),
+            "steps_per_wall_second": steps / wall, "steps_per_core_second": steps / max(on_core1 - on_core0, 1e-9)}
+
+
 class Load(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -33,7 +65,8 @@ class Load(unittest.TestCase):
         with clitest.Server("watchers") as server, self.cascade_client.Client(server.address) as client:
             sim = client.create(clitest.fixture("rain_column"), overrides=LONG_RUN)
             sim.start()
-            alone = steps_per_second(sim)
+            task = solver_thread(server)
+            alone = solver_time(sim, task)
             errors, received, stop = [], [0] * 20, threading.Event()
 
             def watcher(k):
@@ -57,16 +90,21 @@ class Load(unittest.TestCase):
             threads += [threading.Thread(target=querier, args=(k,)) for k in range(16, 20)]
             for t in threads:
                 t.start()
-            loaded = steps_per_second(sim)
+            loaded = solver_time(sim, task)
             stop.set()
             for t in threads:
                 t.join(timeout=10)
             self.assertEqual(errors, [])
             self.assertTrue(all(n > 0 for n in received), received)
-            # Shared 2-core machine: the clients' own Python threads compete for the cores, so the
-            # bound is loose; a solver that waited for its clients would drop far below it.
-            self.assertGreater(loaded, 0.5 * alone, f"{loaded:.0f} steps/s with 16 watchers, {alone:.0f} without")
-            print(f"\nsteps/s: {alone:.0f} alone, {loaded:.0f} with 16 watchers and 4 query loops")
+            print(f"\nsolver thread alone: {alone}\nwith 16 watchers and 4 query loops: {loaded}")
+            # Whether the solver gets a core is the machine's business (on 2 cores the 20 client
+            # threads and the handlers take most of them: docs/performance.md measures the pace with
+            # a core to spare). What the server decides is whether its solver waits: the requests
+            # are queued to the solver thread and answered between steps, and no reader holds a lock
+            # through a step, so the thread sleeps no longer under load than alone. The allowance
+            # is the scheduler's: a sleep shorter than a tick that the kernel accounts to neither.
+            self.assertLess(loaded["blocked"], alone["blocked"] + 0.05, (alone, loaded))
+            self.assertGreater(loaded["steps_per_wall_second"], 0)
 
     def test_clients_that_vanish_mid_stream(self):
         with clitest.Server("vanishing") as server, self.cascade_client.Client(server.address) as client:
