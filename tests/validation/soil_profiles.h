@@ -55,4 +55,38 @@ inline reference::RichardsSoil richards_soil(const SoilMaterial& soil, double po
   return r;
 }
 
+// Θ*(p): the pore-water volume per soil volume that the pore-water continuity (Eq. 27a with
+// ERRATA.md) conserves in a rigid skeleton. There C_r dρ_w/dt = −ρ_w ∇·q_w, and with
+// ρ_w = ρ_w0 (1 + p_w/K_w) (Eq. 6) that is dΘ*/dt = −∇·q_w for
+//   Θ*(p) = φ S_w(0) + ∫_0^p C_r(p') / (K_w + p') dp',   C_r = φ (S_w − K_w ∂S_w/∂p_c) (Eq. 28b),
+// which tends to φ S_w for incompressible water. Integrated by composite 8-point Gauss–Legendre
+// over pieces of at most 1 kPa.
+inline double conserved_pore_water_volume(const SoilMaterial& soil, double porosity, double p) {
+  static constexpr double x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+  static constexpr double w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+  const double k_w = soil.water_bulk_modulus;
+  const auto integrand = [&](double q) { return soil.hydraulic.capacity(-q, porosity, k_w) / (k_w + q); };
+  const int pieces = std::max(1, int(std::ceil(std::fabs(p) / 1000.0)));
+  const double width = p / pieces;
+  double integral = 0;
+  for (int k = 0; k < pieces; ++k) {
+    const double mid = (k + 0.5) * width, half = 0.5 * width;
+    for (int j = 0; j < 4; ++j) integral += w[j] * half * (integrand(mid + half * x[j]) + integrand(mid - half * x[j]));
+  }
+  return porosity * soil.hydraulic.saturation(0.0) + integral;
+}
+
+// Σ_i V_i Θ*(p_w,i) over the soil particles of a frame (m³, per metre of depth in 2D), with
+// V_i = m/ρ_i the particle's volume from its numerical density (Eq. 22).
+inline double pore_water_volume(const FieldFrame& f, const SoilMaterial& soil, double particle_mass) {
+  const auto* p = f.find("pore_pressure");
+  const auto* porosity = f.find("porosity");
+  const auto* density = f.find("density");
+  double sum = 0;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (f.phase[i] == std::uint8_t(Phase::soil))
+      sum += particle_mass / density->values[i] * conserved_pore_water_volume(soil, porosity->values[i], p->values[i]);
+  return sum;
+}
+
 }  // namespace cascade::testing

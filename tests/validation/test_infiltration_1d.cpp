@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "server/core/engine_state.h"
+#include "server/physics/soil_view.h"
 #include "tests/reference/richards_1d.h"
 #include "tests/validation/case_run.h"
 #include "tests/validation/soil_profiles.h"
@@ -44,6 +46,23 @@ reference::Richards1d richards(const EngineConfig& config, double intensity, dou
                                reference::BottomBoundary::no_flow(), options);
 }
 
+// The surface particles that take the prescribed flux of Eq. 39 (SurfaceState::flux) and those
+// held at p_max or p_min instead, from the engine's state.
+struct SurfaceCount {
+  std::size_t flux = 0, held = 0;
+};
+SurfaceCount surface_states(const Engine& engine) {
+  const EngineState state = engine.state();
+  const auto& phase = state.integers.at("phase");
+  const auto& free_surface = state.integers.at("free_surface");
+  const auto& surface_state = state.integers.at("surface_state");
+  SurfaceCount count;
+  for (std::size_t i = 0; i < phase.size(); ++i)
+    if (phase[i] == std::uint32_t(Phase::soil) && free_surface[i])
+      ++(surface_state[i] == std::uint32_t(SurfaceState::flux) ? count.flux : count.held);
+  return count;
+}
+
 // Runs the case and its Richards solution to each time and records the worst |p_SPH − p_ref| over
 // the layers, in units of the suction range.
 void compare(const std::string& name, const std::string& case_file, double intensity, double p_min) {
@@ -71,11 +90,45 @@ void compare(const std::string& name, const std::string& case_file, double inten
   }
 }
 
+// The pore water's balance at the same times: while the whole surface takes the prescribed flux
+// (Eq. 39), the water that the column gains (Σ V Θ*, the volume that Eq. 27a conserves:
+// soil_profiles.h) is the flux times the surface and the time, the base being impermeable.
+void water_balance(const std::string& name, const std::string& case_file, double intensity) {
+  testing::CaseRun run(case_file, coarse());
+  const SoilMaterial& soil = run.config.soils.at(0);
+  const double particle_mass = run.config.water_density * run.config.dp * run.config.dp;  // 2D: m = ρ_w0 dp²
+  const double width = run.config.domain_max[0] - run.config.domain_min[0];  // the periodic column's top
+  const double initial_volume = testing::pore_water_volume(run.engine->frame(), soil, particle_mass);
+  for (double day : {0.05, 0.1, 0.15, 0.25}) {
+    run.run_until(day * 86400.0);
+    const SurfaceCount surface = surface_states(*run.engine);
+    EXPECT_EQ(surface.flux, 12u);  // the top layer at dp = 0.04 m, every particle on the flux condition
+    EXPECT_EQ(surface.held, 0u);
+    const double came_in = intensity * width * run.engine->time();
+    const double gained = testing::pore_water_volume(run.engine->frame(), soil, particle_mass) - initial_volume;
+    char metric[160];
+    std::snprintf(metric, sizeof metric, "pore-water volume gained (Σ V Θ*) / flux × surface × time at %.2f day", day);
+    CASCADE_VALIDATE({.case_name = name + " (cases/" + case_file + ", dp = 0.04 m)",
+                      .reference = "conservation of the pore water (Eq. 27a): through an impermeable base the "
+                                   "column gains what its surface takes",
+                      .metric = metric, .measured = gained / came_in, .reference_value = 1.0, .tolerance = 0.005,
+                      .tolerance_source = "the issue's tolerance: 0.5% of the water that came in or left"});
+  }
+}
+
 TEST(Infiltration1D, PorePressureAgainstRichards) {
   compare("1D infiltration", "infiltration_1d.yaml", 1.1574e-6, -1e30);
 }
 
 TEST(Evaporation1D, PorePressureAgainstRichards) { compare("1D evaporation", "evaporation_1d.yaml", -2.3148e-8, -1e5); }
+
+// Known failures (docs/physics.md, "Pore-water balance"): the prescribed flux enters through the
+// renormalised divergence of the surface particle, a one-sided fit that is not a conservative
+// flux; the balance is off while the profile under the surface is curved.
+TEST(Infiltration1D, PoreWaterBalanceKnownFailure) {
+  water_balance("1D infiltration", "infiltration_1d.yaml", 1.1574e-6);
+}
+TEST(Evaporation1D, PoreWaterBalanceKnownFailure) { water_balance("1D evaporation", "evaporation_1d.yaml", -2.3148e-8); }
 
 }  // namespace
 }  // namespace cascade
