@@ -9,10 +9,13 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <memory>
+#include <vector>
 
 #include "server/app/server_options.h"
 #include "server/scenario/file_text.h"
 #include "server/service/simulation_service.h"
+#include "server/service/unparsable_request.h"
 
 namespace {
 
@@ -72,6 +75,9 @@ int main(int argc, char** argv) {
   }
   builder.SetMaxReceiveMessageSize(4 << 20);
   builder.RegisterService(&simulations);
+  std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors;
+  interceptors.push_back(service::unparsable_request_interceptors());
+  builder.experimental().SetInterceptorCreators(std::move(interceptors));
   const std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
   if (!server || port == 0) {
     std::fprintf(stderr, "cascade-server: cannot listen on %s\n", options.listen.c_str());

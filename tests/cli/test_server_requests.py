@@ -200,6 +200,41 @@ class UnknownFields(unittest.TestCase):
             self.assertEqual(sim.get().forcing.rainfall.intensity, 4e-5)
 
 
+class UnparsableBytes(unittest.TestCase):
+    """Issue 14: request bytes that do not parse were answered UNIMPLEMENTED with an empty message
+    (gRPC's callback handlers do so: server/service/unparsable_request.h)."""
+
+    def test_bytes_that_do_not_parse_are_invalid_argument_naming_the_method(self):
+        grpc, _, _, pb = import_api()
+        import cascade_client
+        with clitest.Server("unparsable") as server, cascade_client.Client(server.address) as client, \
+                grpc.insecure_channel(server.address) as channel:
+            sim = client.create(clitest.fixture("rain_column"))
+            name = pb.GetSimulationRequest(name=sim.name).SerializeToString()
+            # A varint that never ends; a length past the end; a wire type 7 that does not exist; a
+            # string field (name) holding a byte that is not UTF-8.
+            garbage = [b"\xff\xff\xff", b"\x0a\x05ab", b"\x0f\x01", b"\x0a\x02\xe9a"]
+            # Unary and server-streaming methods (WatchSimulation, QueryFields, StreamSnapshots).
+            methods = [("GetSimulation", channel.unary_unary), ("DeleteSimulation", channel.unary_unary),
+                       ("WatchSimulation", channel.unary_stream), ("QueryFields", channel.unary_stream)]
+            checked = 0
+            for method, kind in methods:
+                for request in garbage:
+                    with self.assertRaises(grpc.RpcError, msg=(method, request)) as raised:
+                        reply = kind(f"/cascade.v1.SimulationService/{method}")(request, timeout=30)
+                        if kind == channel.unary_stream:
+                            next(iter(reply))
+                    self.assertEqual(raised.exception.code(), grpc.StatusCode.INVALID_ARGUMENT, (method, request))
+                    self.assertIn(f"do not parse as the request message of /cascade.v1.SimulationService/{method}",
+                                  raised.exception.details())
+                    checked += 1
+            self.assertEqual(checked, 16)
+            # A method that does not exist stays UNIMPLEMENTED; the simulation was not touched.
+            with self.assertRaises(grpc.RpcError) as raised:
+                channel.unary_unary("/cascade.v1.SimulationService/NoSuchMethod")(name, timeout=30)
+            self.assertEqual(raised.exception.code(), grpc.StatusCode.UNIMPLEMENTED)
+            self.assertEqual(channel.unary_unary("/cascade.v1.SimulationService/GetSimulation")(name, timeout=30),
+                             sim.get().SerializeToString())
 
 
 class OutputIntervals(unittest.TestCase):
