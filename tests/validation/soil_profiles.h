@@ -14,6 +14,7 @@
 #include "server/core/soil_material.h"
 #include "server/core/types.h"
 #include "tests/reference/richards_1d.h"
+#include "tests/validation/validation_table.h"
 
 namespace cascade::testing {
 
@@ -87,6 +88,75 @@ inline double pore_water_volume(const FieldFrame& f, const SoilMaterial& soil, d
     if (f.phase[i] == std::uint8_t(Phase::soil))
       sum += particle_mass / density->values[i] * conserved_pore_water_volume(soil, porosity->values[i], p->values[i]);
   return sum;
+}
+
+// Particle-to-particle noise of the pore pressure (issue 13, item 5): for each soil particle, the
+// value that a linear fit to its soil neighbours within 2h predicts there (weighted least squares
+// with the Wendland kernel, the particle itself left out), and the largest |p_i − fit| over the
+// particles, with the field's range max p − min p over the soil. A smooth field is fitted to
+// O(h² ∂²p) and the fit passes through its odd-even checkerboard, so the residual is the noise.
+struct PressureNoise {
+  double largest = 0;  // Pa
+  double range = 0;    // Pa
+  std::size_t particles = 0;  // soil particles with a fit (at least Dim + 2 neighbours)
+};
+
+inline PressureNoise pore_pressure_noise(const FieldFrame& f, double h, int dimensions) {
+  const auto* p = f.find("pore_pressure");
+  std::vector<std::size_t> soil;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (f.phase[i] == std::uint8_t(Phase::soil)) soil.push_back(i);
+  PressureNoise out;
+  if (soil.empty()) return out;
+  double low = p->values[soil[0]], high = low;
+  for (std::size_t i : soil) low = std::min(low, p->values[i]), high = std::max(high, p->values[i]);
+  out.range = high - low;
+  const int axes[3] = {0, dimensions == 2 ? 2 : 1, 2};  // 2D cases lie in the (x, z) plane
+  const int n = dimensions + 1;                          // unknowns: the value and the gradient
+  const double support = 2 * h;
+  for (std::size_t i : soil) {
+    double normal[4][4] = {}, rhs[4] = {};
+    int neighbours = 0;
+    for (std::size_t j : soil) {
+      if (j == i) continue;
+      double d[3] = {}, r2 = 0;
+      for (int a = 0; a < dimensions; ++a) {
+        d[a] = f.position[3 * j + axes[a]] - f.position[3 * i + axes[a]];
+        r2 += d[a] * d[a];
+      }
+      if (r2 >= support * support) continue;
+      const double q = std::sqrt(r2) / h, w = std::pow(1 - q / 2, 4) * (2 * q + 1);
+      const double basis[4] = {1, d[0], d[1], d[2]};
+      for (int a = 0; a < n; ++a) {
+        rhs[a] += w * basis[a] * p->values[j];
+        for (int b = 0; b < n; ++b) normal[a][b] += w * basis[a] * basis[b];
+      }
+      ++neighbours;
+    }
+    if (neighbours < dimensions + 2) continue;
+    // Gaussian elimination with partial pivoting on the n × n normal equations.
+    for (int c = 0; c < n; ++c) {
+      int pivot = c;
+      for (int r = c + 1; r < n; ++r)
+        if (std::fabs(normal[r][c]) > std::fabs(normal[pivot][c])) pivot = r;
+      std::swap(normal[c], normal[pivot]);
+      std::swap(rhs[c], rhs[pivot]);
+      for (int r = c + 1; r < n; ++r) {
+        const double factor = normal[r][c] / normal[c][c];
+        for (int k = c; k < n; ++k) normal[r][k] -= factor * normal[c][k];
+        rhs[r] -= factor * rhs[c];
+      }
+    }
+    double solution[4] = {};
+    for (int r = n - 1; r >= 0; --r) {
+      double sum = rhs[r];
+      for (int k = r + 1; k < n; ++k) sum -= normal[r][k] * solution[k];
+      solution[r] = sum / normal[r][r];
+    }
+    out.largest = worst_of(out.largest, std::fabs(p->values[i] - solution[0]));
+    ++out.particles;
+  }
+  return out;
 }
 
 }  // namespace cascade::testing

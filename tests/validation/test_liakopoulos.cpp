@@ -45,21 +45,13 @@
 
 #include "tests/reference/liakopoulos_reference.h"
 #include "tests/validation/case_run.h"
+#include "tests/validation/liakopoulos_case.h"
 #include "tests/validation/validation_table.h"
 
 namespace cascade {
 namespace {
 
 using Reference = reference::LiakopoulosOgsProfiles;
-
-// The case at dp = 0.05 m with K_sat α times larger and the initialisation α times shorter.
-std::vector<std::string> accelerated(double alpha) {
-  char conductivity[64], duration[64];
-  std::snprintf(conductivity, sizeof conductivity, "materials[0].soil.saturated_conductivity=%.10g",
-                alpha * reference::LiakopoulosMaterial::saturated_conductivity);
-  std::snprintf(duration, sizeof duration, "initialisation.duration=%.10g", 20.0 / alpha);
-  return {"dp=0.05", conductivity, duration};
-}
 
 struct Layers {
   std::vector<double> z, pressure, settlement;
@@ -90,7 +82,7 @@ TEST(Liakopoulos, PorePressureProfilesAgainstOpenGeoSys) {
   const std::string case_name = "Liakopoulos drainage (cases/liakopoulos.yaml, dp = 0.05 m, K_sat × 100)";
   const std::string ogs = "OpenGeoSys RICHARDS_MECHANICS, LiakopoulosHM benchmark (W. Wang 2020; "
                           "tests/reference/liakopoulos_reference.h)";
-  testing::CaseRun run("liakopoulos.yaml", accelerated(kAlpha));
+  testing::CaseRun run("liakopoulos.yaml", testing::accelerated_liakopoulos(kAlpha));
   ASSERT_GT(run.initialisation_steps, 0u);
   ASSERT_DOUBLE_EQ(run.engine->time(), 0.0);  // the clock restarts after the initialisation
   Layers at300;
@@ -123,7 +115,7 @@ TEST(Liakopoulos, PorePressureProfilesAgainstOpenGeoSys) {
 
   // The scaling in time holds: half the acceleration gives the same profile at 300 s.
   constexpr double kCheckAlpha = 50.0;
-  testing::CaseRun check("liakopoulos.yaml", accelerated(kCheckAlpha));
+  testing::CaseRun check("liakopoulos.yaml", testing::accelerated_liakopoulos(kCheckAlpha));
   check.run_until(Reference::times[0] / kCheckAlpha);
   const Layers other = layers(check.engine->frame());
   ASSERT_EQ(other.z.size(), at300.z.size());
