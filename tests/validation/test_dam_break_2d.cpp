@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "tests/validation/case_run.h"
@@ -38,12 +39,14 @@ double interpolate(const std::vector<Point>& curve, double T) {
   return curve.back().Z;
 }
 
-TEST(DamBreak2D, SurgeFrontAgainstMartinMoyceAndBelowRitter) {
-  testing::CaseRun run("dam_break_2d.yaml");
-  const double a = 0.146, g = 9.81;
-  const double time_scale = std::sqrt(2 * g / a);  // T = t · time_scale
+constexpr double kA = 0.146, kG = 9.81;
+const double kTimeScale = std::sqrt(2 * kG / kA);  // T = t · time_scale
+
+// The surge front Z(T) every 2 ms of simulated time to T = 3.05, with the case's overrides (dp).
+std::vector<Point> surge_front(const std::vector<std::string>& overrides = {}) {
+  testing::CaseRun run("dam_break_2d.yaml", overrides);
   std::vector<Point> simulated;
-  const double end = 3.05 / time_scale;
+  const double end = 3.05 / kTimeScale;
   double next_sample = 0;
   while (run.engine->time() < end) {
     run.engine->step();
@@ -51,9 +54,14 @@ TEST(DamBreak2D, SurgeFrontAgainstMartinMoyceAndBelowRitter) {
     next_sample += 0.002;
     const auto water = testing::water_values(run.engine->frame(), "pressure");
     const double front = *std::max_element(water.x.begin(), water.x.end());
-    simulated.push_back({run.engine->time() * time_scale, front / a});
+    simulated.push_back({run.engine->time() * kTimeScale, front / kA});
   }
-  ASSERT_EQ(run.engine->lost_particles(), 0u);
+  EXPECT_EQ(run.engine->lost_particles(), 0u);
+  return simulated;
+}
+
+TEST(DamBreak2D, SurgeFrontAgainstMartinMoyceAndBelowRitter) {
+  const std::vector<Point> simulated = surge_front();
 
   // Below Ritter's ideal-fluid front at every sample after the first step.
   double largest_lead_over_ritter = -INFINITY;
@@ -86,6 +94,31 @@ TEST(DamBreak2D, SurgeFrontAgainstMartinMoyceAndBelowRitter) {
                     .relative = true,
                     .tolerance_source = "the scatter of WCSPH surge speeds against this experiment once the gate "
                                         "has cleared (Colagrossi & Landrini 2003; Marrone et al. 2011)"});
+}
+
+// Issue 14, item 4: is the lead over the experiment resolution? The case at dp = a/20 and at its
+// own a/40; with first-order convergence in dp (assumed: two resolutions cannot give the order)
+// the front at dp → 0 is 2 Z(a/40) − Z(a/20) (Richardson), held to the same band as above.
+// Measured when written: refining moves the front forward by 1-2.5%, and the extrapolated front
+// leads Martin & Moyce by 21% at T = 1.19, just outside the band: the lead is the gate delay, not
+// resolution, and slightly larger than 20% once converged.
+TEST(DamBreak2D, ConvergedFrontAgainstMartinMoyceKnownFailure) {
+  const std::vector<Point> coarse = surge_front({"dp=0.0073"});  // a/20
+  const std::vector<Point> fine = surge_front();                  // a/40
+  const std::string case_name = "2D dam break (cases/dam_break_2d.yaml), dp = a/20 and a/40";
+  std::size_t compared = 0;
+  for (const auto& m : kMartinMoyce) {
+    if (m.T < 0.8) continue;
+    const double z_fine = interpolate(fine, m.T), z_coarse = interpolate(coarse, m.T);
+    char metric[96];
+    std::snprintf(metric, sizeof metric, "front Z at T = %.2f extrapolated to dp → 0, 2 Z(a/40) − Z(a/20)", m.T);
+    CASCADE_VALIDATE({.case_name = case_name, .reference = "Martin & Moyce (1952), Table 2, n² = 2", .metric = metric,
+                      .measured = 2 * z_fine - z_coarse, .reference_value = m.Z, .tolerance = 0.20, .relative = true,
+                      .tolerance_source = "the experiment's gate delay: WCSPH leads the measured front by 10-20% "
+                                          "(Colagrossi & Landrini 2003)"});
+    ++compared;
+  }
+  EXPECT_EQ(compared, 12u);
 }
 
 }  // namespace
