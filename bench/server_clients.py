@@ -15,19 +15,17 @@ import os
 import pathlib
 import statistics
 import subprocess
-import sys
 import tempfile
 import time
 
+import python_client
+
 parser = argparse.ArgumentParser()
-parser.add_argument("--build", default="build/release")
-parser.add_argument("--case", default="tests/cli/fixtures/rain_column.yaml")
-parser.add_argument("--set", action="append", default=["end_time=1e7"], help="case overrides, as cascade run --set")
+python_client.add_running_case_arguments(parser)
 parser.add_argument("--seconds", type=float, default=60.0, help="duration of the load")
 parser.add_argument("--alone-seconds", type=float, default=15.0, help="duration of each measurement alone")
 args = parser.parse_args()
-build = pathlib.Path(args.build).resolve()
-sys.path[:0] = [str(build / "python"), str(pathlib.Path(__file__).resolve().parent.parent / "clients" / "python")]
+build = python_client.use_client(args.build)
 import cascade_client  # noqa: E402
 import grpc  # noqa: E402
 
@@ -142,7 +140,7 @@ def main():
         print("  ", e)
     print(f"GetSimulation latency: p50 {percentile(0.5):.2f} ms, p99 {percentile(0.99):.2f} ms, "
           f"max {latencies[-1] * 1e3:.2f} ms over {len(latencies)} calls")
-    settled = [m for t, m in memory if t >= 5.0]
+    settled = [m for t, m in memory if t >= 5.0] or [m for _, m in memory]  # a short run: all of it
     print(f"server resident memory: {memory[0][1]:.1f} MB at the start of the load, {settled[0]:.1f} MB after 5 s, "
           f"{memory[-1][1]:.1f} MB at the end ({total} requests); largest {max(m for _, m in memory):.1f} MB; "
           f"median {statistics.median(settled):.1f} MB")

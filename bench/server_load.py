@@ -10,15 +10,14 @@ import json
 import pathlib
 import statistics
 import subprocess
-import sys
 import tempfile
 import threading
 import time
 
+import python_client
+
 parser = argparse.ArgumentParser()
-parser.add_argument("--build", default="build/release")
-parser.add_argument("--case", default="tests/cli/fixtures/rain_column.yaml")
-parser.add_argument("--set", action="append", default=["end_time=1e7"], help="case overrides, as cascade run --set")
+python_client.add_running_case_arguments(parser)
 parser.add_argument("--steps", type=int, default=4000, help="steps per throughput measurement")
 parser.add_argument("--changes", type=int, default=50, help="UpdateForcing requests timed")
 parser.add_argument("--query-interval", type=float, default=0.0,
@@ -26,8 +25,7 @@ parser.add_argument("--query-interval", type=float, default=0.0,
 parser.add_argument("--server-cpus", default="",
                     help="run the server under taskset -c CPUS (and pin the clients elsewhere yourself)")
 args = parser.parse_args()
-build = pathlib.Path(args.build).resolve()
-sys.path[:0] = [str(build / "python"), str(pathlib.Path(__file__).resolve().parent.parent / "clients" / "python")]
+build = python_client.use_client(args.build)
 import cascade_client  # noqa: E402
 import grpc  # noqa: E402
 

@@ -12,12 +12,13 @@
 
 import argparse
 import os
-import pathlib
 import subprocess
 import sys
 import tempfile
 import threading
 import time
+
+import python_client
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--build", default="build/release")
@@ -25,8 +26,7 @@ parser.add_argument("--case", default="cases/dam_break_2d.yaml")
 parser.add_argument("--until", type=float, default=0.1, help="simulated seconds of each `cascade run`")
 parser.add_argument("--steps", type=int, default=2000, help="steps of each server simulation")
 args = parser.parse_args()
-build = pathlib.Path(args.build).resolve()
-sys.path[:0] = [str(build / "python"), str(pathlib.Path(__file__).resolve().parent.parent / "clients" / "python")]
+build = python_client.use_client(args.build)
 import cascade_client  # noqa: E402
 
 cores = len(os.sched_getaffinity(0))
