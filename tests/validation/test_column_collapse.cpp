@@ -58,7 +58,7 @@ Collapse collapse(double aspect_ratio) {
       front = std::max(front, frame.position[3 * i]);
       double v2 = 0;
       for (int a = 0; a < velocity->components; ++a) v2 += std::pow(velocity->values[i * velocity->components + a], 2);
-      speed = std::max(speed, std::sqrt(v2));
+      speed = testing::worst_of(speed, std::sqrt(v2));
     }
     c = {(front + kDp / 2 - kL0) / kL0, speed, run.engine->time()};
     if ((t >= earliest && speed < at_rest) || t >= latest) break;

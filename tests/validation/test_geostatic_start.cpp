@@ -88,10 +88,10 @@ Rest run_at_rest(Engine& engine, double duration) {
   Rest rest;
   while (engine.time() < duration) {
     engine.step();
-    rest.max_speed = std::max(rest.max_speed, engine.equilibrium().max_speed);
+    rest.max_speed = testing::worst_of(rest.max_speed, engine.equilibrium().max_speed);
   }
   const std::vector<double> after = plastic_strain(engine.frame());
-  for (std::size_t k = 0; k < kappa.size(); ++k) rest.kappa_change = std::max(rest.kappa_change, std::fabs(after[k] - kappa[k]));
+  for (std::size_t k = 0; k < kappa.size(); ++k) rest.kappa_change = testing::worst_of(rest.kappa_change, std::fabs(after[k] - kappa[k]));
   return rest;
 }
 
@@ -181,12 +181,17 @@ TEST(GeostaticStart, SoilColumnLoadedByGravityRelaxesToItsBuoyantWeight) {
   const double rho_s = (1 - c.porosity) * kGrain + c.porosity * kRho;
   const double buoyant = (rho_s - kRho) * kG * c.height;
   double worst = 0;
+  std::size_t compared = 0;
   for (std::size_t i = 0; i < f.size(); ++i) {
     const double z = f.position[3 * i + 2];
-    if (f.phase[i] != kSoil || z < 3 * c.h_over_dp * c.dp) continue;
+    // Above the layer at 3h (z = 0.45 m), which the settlement would put on either side of it.
+    if (f.phase[i] != kSoil || z < 3 * c.h_over_dp * c.dp + 0.5 * c.dp) continue;
     const double expected = -rho_s * kG * (c.height - z) + pore->values[i];
-    worst = std::max(worst, std::fabs(stress->values[6 * i + 2] - expected));
+    worst = testing::worst_of(worst, std::fabs(stress->values[6 * i + 2] - expected));
+    ++compared;
   }
+  // Layers at z = (k + ½) dp above 0.45 m: 25 of the 30, `columns` particles each.
+  EXPECT_EQ(compared, std::size_t(25 * c.columns));
   CASCADE_VALIDATE({.case_name = case_name,
                     .reference = "the buoyant weight: σ'_zz = σ_zz + p_w (Eq. 7), σ_zz the weight above (Eq. 28a)",
                     .metric = "largest |σ'_zz − (σ_zz + p_w)| / the buoyant weight at the base",
@@ -236,7 +241,7 @@ TEST(GeostaticStart, DemoSlopeRingsWithoutRelaxation) {
   double max_speed = 0;
   while (run.engine->time() < 1.0) {
     run.engine->step();
-    max_speed = std::max(max_speed, run.engine->equilibrium().max_speed);
+    max_speed = testing::worst_of(max_speed, run.engine->equilibrium().max_speed);
   }
   CASCADE_VALIDATE({.case_name = kDemoCase,
                     .reference = "a control: undamped from its K0 start the slope rings above the at-rest bound",

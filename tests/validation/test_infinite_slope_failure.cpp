@@ -128,7 +128,7 @@ double largest_soil_speed(const FieldFrame& f) {
   double best = 0;
   for (std::size_t i = 0; i < f.size(); ++i)
     if (f.phase[i] == std::uint8_t(Phase::soil))
-      best = std::max(best, std::sqrt(v->values[3 * i] * v->values[3 * i] + v->values[3 * i + 1] * v->values[3 * i + 1] +
+      best = testing::worst_of(best, std::sqrt(v->values[3 * i] * v->values[3 * i] + v->values[3 * i + 1] * v->values[3 * i + 1] +
                                       v->values[3 * i + 2] * v->values[3 * i + 2]));
   return best;
 }
@@ -215,10 +215,10 @@ Outcome run_case(const std::vector<std::string>& overrides) {
         mean += p->values[i] / members.size();
         low = std::min(low, p->values[i]), high = std::max(high, p->values[i]);
       }
-      out.head_spread = std::max(out.head_spread, (high - low) / out.gamma_w);
+      out.head_spread = testing::worst_of(out.head_spread, (high - low) / out.gamma_w);
       const double expected = head_at(n, out.switch_time);
       lo = std::min(lo, expected), hi = std::max(hi, expected);
-      out.worst_head = std::max(out.worst_head, std::fabs(mean / out.gamma_w - expected));
+      out.worst_head = testing::worst_of(out.worst_head, std::fabs(mean / out.gamma_w - expected));
     }
     out.head_range = hi - lo;
     const auto* ratio = handoff.find("yield_ratio");
