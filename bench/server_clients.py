@@ -35,8 +35,8 @@ KINDS = ["get"] * 8 + ["probes"] * 8 + ["watch"] * 8 + ["query"] * 4 + ["snapsho
 
 
 def client_loop(kind, address, name, ready, stop, results):
-    """One client, back to back until stop_at: (kind, requests, errors, Get latencies in s). It
-    runs on the cores of the process that started it (main() leaves the solver's core out)."""
+    """One client, back to back until `stop` is set; puts (kind, requests, errors, Get latencies in
+    s). It runs on the cores of the process that started it (main() leaves the solver's core out)."""
     requests, errors, latencies = 0, [], []
     with cascade_client.Client(address) as client:
         sim = client.simulation(name)
@@ -90,7 +90,8 @@ def rate(sim, seconds):
 def main():
     if len(CORES) < 2:
         raise SystemExit("needs two cores: one for the solver, one for the handlers and the clients")
-    data = tempfile.mkdtemp(prefix="cascade-clients-")
+    data_dir = tempfile.TemporaryDirectory(prefix="cascade-clients-")  # the server's journals, removed after
+    data = data_dir.name
     server = subprocess.Popen(["taskset", "-c", ",".join(map(str, sorted(OTHER_CORES))),
                                str(build / "bin" / "cascade-server"), "--listen", "127.0.0.1:0", "--data-dir", data,
                                "--threads", "1"], stderr=subprocess.PIPE, text=True)
@@ -125,6 +126,7 @@ def main():
     finally:
         server.terminate()
         server.wait(timeout=30)
+        data_dir.cleanup()
 
     requests = {k: sum(o[1] for o in outcomes if o[0] == k) for k in dict.fromkeys(KINDS)}
     errors = [e for o in outcomes for e in o[2]]
