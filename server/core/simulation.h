@@ -552,6 +552,10 @@ class Simulation final : public Engine {
     }
     wall_ = wall;
     wall_pore_pressure_ = wall_pressure;
+    for (std::size_t k = 0; k < config_.soils.size(); ++k)
+      if (!(config_.soils[k].reference_porosity > 0 && config_.soils[k].reference_porosity < 1))
+        throw std::invalid_argument("soil material " + std::to_string(k) +
+                                    " has no reference porosity in (0, 1) for its retention curve");
     soil_materials_ = config_.soils;
     soil_material_ = material;
     porosity_ = porosity;

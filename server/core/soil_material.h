@@ -11,6 +11,8 @@ namespace cascade {
 
 struct SoilMaterial {
   double grain_density = 0;           // ρ_s0 (kg/m³), mixture density of Eq. 28a
+  double reference_porosity = 0;      // φ0, the porosity at which the retention curve holds
+                                      // (grain_bound_water.h): the case's initial porosity
   double saturated_conductivity = 0;  // K_sat (m/s); K = K_sat K_rel(p_c) in Eq. 27b
   double water_bulk_modulus = 0;      // K_w (Pa): pore-water state p_w = K_w/ρ_w0 (ρ_w − ρ_w0)
                                       // (Eq. 6 for the pore water, Eq. 36b) and C_r (Eq. 28b)

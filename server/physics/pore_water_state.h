@@ -23,6 +23,7 @@
 #include "server/core/hydraulic_forcing.h"
 #include "server/core/particle_view.h"
 #include "server/physics/soil_view.h"
+#include "server/physics/swcc/grain_bound_water.h"
 
 namespace cascade {
 
@@ -76,7 +77,8 @@ struct PoreWaterState {
     if (state != std::uint8_t(SurfaceState::flux)) p.water_density[i] = pore_density_of(m, rho0, pressure);  // Eq. 36b
     soil.surface_state[i] = state;
     p.pressure[i] = pressure;
-    soil.saturation[i] = Real(m.hydraulic.saturation(-double(pressure)));
+    soil.saturation[i] =
+        Real(saturation_at_porosity(m.hydraulic, m.reference_porosity, -double(pressure), double(soil.porosity[i])));
   }
 
  private:

@@ -39,6 +39,7 @@
 #include "server/physics/soil_momentum.h"
 #include "server/physics/soil_view.h"
 #include "server/physics/soil_viscosity_switch.h"
+#include "server/physics/swcc/grain_bound_water.h"
 #include "server/physics/water_continuity.h"
 #include "server/physics/water_momentum.h"
 
@@ -126,14 +127,18 @@ struct SoilInteraction {
     const Real saturation = soil.saturation[i];
     const Real volumetric = rigid ? Real(0) : gradient.trace();  // ε̇_v of the skeleton
     const double p_c = -double(p.pressure[i]);
-    const Real capacity = Real(m.hydraulic.capacity(p_c, double(porosity), m.water_bulk_modulus));
+    const Real capacity =
+        Real(pore_water_capacity(m.hydraulic, m.reference_porosity, p_c, double(porosity), m.water_bulk_modulus));
+    // The skeleton's volume change moves the free pore water only (grain_bound_water.h).
+    const Real skeleton_share = Real(skeleton_water_share(m.hydraulic, p_c));
     const bool prescribed = soil.free_surface[i] && soil.surface_state[i] != std::uint8_t(SurfaceState::flux);
     // The free water meets the pore water over the wetted fraction S_w of the pores (the adjoint
     // of the S_w,i p_w,i that the water sees, water_interaction.h): a dry skeleton's residual
     // water is neither squeezed nor sucked by the water moving past it.
     const Real pore_volumetric = rigid ? Real(0) : volumetric + saturation * interface_divergence;
-    const Real pore_rate = pore_water_density_rate(rho_w_i, capacity, seepage_divergence, saturation, pore_volumetric,
-                                                   Real(m.delta) * sph.h * Real(m.pore_sound_speed), diffusion);
+    const Real pore_rate =
+        pore_water_density_rate(rho_w_i, capacity, seepage_divergence, skeleton_share, pore_volumetric,
+                                Real(m.delta) * sph.h * Real(m.pore_sound_speed), diffusion);
     p.water_density_rate[i] = prescribed || hold_pore_water ? Real(0) : pore_rate;
     const Real conductivity = Real(m.saturated_conductivity * m.hydraulic.relative_conductivity(p_c));
     const Real dt_sp = hold_pore_water ? std::numeric_limits<Real>::max()
@@ -159,7 +164,8 @@ struct SoilInteraction {
     soil.porosity_rate[i] = (Real(1) - porosity) * volumetric;  // Eq. 26a
     // Eq. 40b with the P-wave speed of the soil and its pore water (soil_momentum.h), Eq. 40a,
     // Eq. 40c; C0 applies after the minimum.
-    const Real c_s = Real(undrained_sound_speed(m, double(saturation), double(capacity), double(rho_s)));
+    const Real c_s =
+        Real(undrained_sound_speed(m, double(saturation), double(skeleton_share), double(capacity), double(rho_s)));
     const Real dt_cv = sph.h / (c_s + max_mu);
     const Real magnitude = acceleration.norm();
     const Real dt_f = magnitude > Real(0) ? std::sqrt(sph.h / magnitude) : dt_cv;

@@ -65,15 +65,16 @@ CASCADE_HD inline double soil_sound_speed(const SoilMaterial& m) {
 }
 
 // The P-wave speed of the soil with its pore water, for the step limit of Eq. 40b:
-//   c_s = sqrt((K + 4G/3 + S_w² K_w / C_r) / ρ_s),
+//   c_s = sqrt((K + 4G/3 + S_w S K_w / C_r) / ρ_s),
 // the skeleton's (Eq. 29) stiffened by the pore water, which in an undrained compression takes
-// dp_w = −(S_w K_w / C_r) dε_v (Eq. 27a without flow) and adds −S_w dp_w to the total stress
-// (Eq. 7); ρ_s of Eq. 28a. Eq. 29's c_s0 leaves the pore water out: with the tables' K_w = 2 MPa it
-// adds about 40% stiffness to a 10 MPa skeleton, with K_w = 20 MPa a saturated layer went unstable
-// at the Eq. 29 step, and with real water (2.2 GPa) the wave is some 20 times faster.
-CASCADE_HD inline double undrained_sound_speed(const SoilMaterial& m, double saturation, double capacity,
-                                               double mixture_density) {
-  const double pore_stiffness = capacity > 0 ? saturation * saturation * m.water_bulk_modulus / capacity : 0.0;
+// dp_w = −(S K_w / C_r) dε_v (Eq. 27a without flow, S = S_max S_e the skeleton's share of the pore
+// water, grain_bound_water.h) and adds −S_w dp_w to the total stress (Eq. 7); ρ_s of Eq. 28a.
+// Eq. 29's c_s0 leaves the pore water out: with the tables' K_w = 2 MPa it adds about 40% stiffness
+// to a 10 MPa skeleton, with K_w = 20 MPa a saturated layer went unstable at the Eq. 29 step, and
+// with real water (2.2 GPa) the wave is some 20 times faster.
+CASCADE_HD inline double undrained_sound_speed(const SoilMaterial& m, double saturation, double skeleton_share,
+                                               double capacity, double mixture_density) {
+  const double pore_stiffness = capacity > 0 ? saturation * skeleton_share * m.water_bulk_modulus / capacity : 0.0;
   return std::sqrt((skeleton_p_wave_modulus(m) + pore_stiffness) / mixture_density);
 }
 

@@ -8,18 +8,22 @@
 #include "server/core/types.h"
 #include "server/physics/pore_water_state.h"
 #include "server/physics/soil_view.h"
+#include "server/physics/swcc/grain_bound_water.h"
 
 namespace cascade {
 
 namespace {
 
-// Θ = φ S_w (1 + p/K_w) and dΘ/dp (implicit_pore_water.h).
+// Θ = φ S_w (1 + p/K_w) and dΘ/dp (implicit_pore_water.h), S_w at the particle's porosity
+// (grain_bound_water.h).
 double water_content(const SoilMaterial& m, double porosity, double p) {
-  return porosity * m.hydraulic.saturation(-p) * (1.0 + p / m.water_bulk_modulus);
+  return porosity * saturation_at_porosity(m.hydraulic, m.reference_porosity, -p, porosity) *
+         (1.0 + p / m.water_bulk_modulus);
 }
 double water_capacity(const SoilMaterial& m, double porosity, double p) {
-  return porosity * (m.hydraulic.saturation(-p) / m.water_bulk_modulus -
-                     (1.0 + p / m.water_bulk_modulus) * m.hydraulic.saturation_derivative(-p));
+  return porosity * (saturation_at_porosity(m.hydraulic, m.reference_porosity, -p, porosity) / m.water_bulk_modulus -
+                     (1.0 + p / m.water_bulk_modulus) *
+                         saturation_derivative_at_porosity(m.hydraulic, m.reference_porosity, -p, porosity));
 }
 double conductivity(const SoilMaterial& m, double p) {
   return m.saturated_conductivity * m.hydraulic.relative_conductivity(-p);
@@ -145,7 +149,7 @@ double ImplicitPoreWater::step(EngineState& s, const HydraulicForcing& forcing, 
     const std::uint32_t k = network_.soil[i];
     const SoilMaterial& m = *material_[i];
     const double s_old = saturation[k];
-    const double s_new = m.hydraulic.saturation(-p[i]);
+    const double s_new = saturation_at_porosity(m.hydraulic, m.reference_porosity, -p[i], porosity_[i]);
     pressure[k] = p[i];
     water_density[k] = pore_density_of(m, config_.water_density, p[i]);  // Eqs. 6, 36b
     saturation[k] = s_new;

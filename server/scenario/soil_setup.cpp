@@ -207,6 +207,7 @@ SoilMaterial soil_material(const pb::ScenarioSpec& spec, int material_index, con
 
   SoilMaterial out;
   out.grain_density = s.grain_density();
+  out.reference_porosity = s.porosity();
   out.saturated_conductivity = s.saturated_conductivity();
   out.water_bulk_modulus = s.water_bulk_modulus() > 0 ? s.water_bulk_modulus() : kDefaultWaterBulkModulus;
   out.pore_sound_speed =

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "server/physics/swcc/grain_bound_water.h"
 #include "server/physics/swcc/hydraulic_model.h"
 #include "server/physics/swcc/hydraulic_model_check.h"
 
@@ -222,16 +223,48 @@ TEST(HydraulicModels, NaNPressurePropagates) {
 TEST(HydraulicModels, CapacityAtLeastPorosityTimesSaturation) {
   const double phi = 0.3, k_w = 2e6;
   EXPECT_NEAR(table3().saturation_derivative(7000.0), -6.39109389796182566e-5, 1e-18);
-  EXPECT_NEAR(table3().capacity(7000.0, phi, k_w), 38.4838091458335878, 1e-11);
+  EXPECT_NEAR(pore_water_capacity(table3(), phi, 7000.0, phi, k_w), 38.4838091458335878, 1e-11);
   for (const auto& [name, m, s_min, s_max] : all_models()) {
-    EXPECT_EQ(m.capacity(-1000.0, phi, k_w), phi * s_max) << name;
+    EXPECT_EQ(pore_water_capacity(m, phi, -1000.0, phi, k_w), phi * s_max) << name;
     for (double p_c : suction_grid()) {
-      const double c_r = m.capacity(p_c, phi, k_w);
+      const double c_r = pore_water_capacity(m, phi, p_c, phi, k_w);
       EXPECT_GE(c_r, phi * m.saturation(p_c)) << name << " p_c " << p_c;
     }
     // Somewhere on the curve the saturation term adds storage (strictly more than φ S_w).
-    EXPECT_GT(m.capacity(5000.0, phi, k_w), phi * m.saturation(5000.0) + 1e-3) << name;
+    EXPECT_GT(pore_water_capacity(m, phi, 5000.0, phi, k_w), phi * m.saturation(5000.0) + 1e-3) << name;
   }
+}
+
+// grain_bound_water.h: at the reference porosity the curve is unchanged; the residual water per
+// unit volume of grains, S_b e, does not change with the porosity; and the skeleton's share of the
+// pore water, S_w + e ∂S_w/∂e at constant p_c, is S_max S_e. By central differences in e: with
+// S_w = (e_wr/e)(1 − S_e) + S_max S_e, the truncation e (h²/6) ∂³S_w/∂e³ = e h² e_wr (1 − S_e)/e⁴
+// is at most 4e−8 here (h = 1e−4, e_wr = 0.3 × 2/3, e >= 3/7).
+TEST(GrainBoundWater, ResidualWaterMovesWithTheGrains) {
+  const double phi0 = 0.4;
+  const auto void_ratio = [](double phi) { return phi / (1 - phi); };
+  const auto porosity = [](double e) { return e / (1 + e); };
+  for (const auto& [name, m, s_min, s_max] : all_models()) {
+    const double bound0 = grain_bound_saturation(m, phi0, phi0);
+    EXPECT_NEAR(bound0, m.bound_saturation(), 1e-15) << name;
+    for (double phi : {0.2, 0.3, 0.5, 0.6, 0.7})
+      EXPECT_NEAR(grain_bound_saturation(m, phi0, phi) * void_ratio(phi), bound0 * void_ratio(phi0), 1e-15) << name;
+    for (double p_c : suction_grid()) {
+      EXPECT_NEAR(saturation_at_porosity(m, phi0, p_c, phi0), m.saturation(p_c), 1e-14) << name << " p_c " << p_c;
+      EXPECT_NEAR(saturation_derivative_at_porosity(m, phi0, p_c, phi0), m.saturation_derivative(p_c),
+                  1e-14 * std::fabs(m.saturation_derivative(p_c)))
+          << name << " p_c " << p_c;
+      for (double phi : {0.3, 0.4, 0.5}) {
+        const double e = void_ratio(phi), step = 1e-4;
+        const double s_plus = saturation_at_porosity(m, phi0, p_c, porosity(e + step));
+        const double s_minus = saturation_at_porosity(m, phi0, p_c, porosity(e - step));
+        const double share = saturation_at_porosity(m, phi0, p_c, phi) + e * (s_plus - s_minus) / (2 * step);
+        EXPECT_NEAR(share, skeleton_water_share(m, p_c), 1e-7) << name << " p_c " << p_c << " φ " << phi;
+      }
+    }
+  }
+  // Saturated: the share is S_max, Eq. 27a's S_w as printed.
+  for (const auto& [name, m, s_min, s_max] : all_models()) EXPECT_EQ(skeleton_water_share(m, -1.0), s_max) << name;
 }
 
 void expect_rejected(const HydraulicModel<double>& m, const std::string& parameter) {
@@ -293,7 +326,7 @@ TEST(HydraulicModels, FloatAgreesWithDouble) {
       EXPECT_PRED2(close, f.saturation(pf), d.saturation(p_c)) << p_c;
       EXPECT_PRED2(close, f.saturation_derivative(pf), d.saturation_derivative(p_c)) << p_c;
       EXPECT_PRED2(close, f.relative_conductivity(pf), d.relative_conductivity(p_c)) << p_c;
-      EXPECT_PRED2(close, f.capacity(pf, 0.3f, 2e6f), d.capacity(p_c, 0.3, 2e6)) << p_c;
+      EXPECT_PRED2(close, pore_water_capacity(f, 0.3f, pf, 0.3f, 2e6f), pore_water_capacity(d, 0.3, p_c, 0.3, 2e6)) << p_c;
     }
     // Edges in float: finite, within bounds, no NaN from underflow (x = 0) or overflow (x = inf).
     const float huge = std::numeric_limits<float>::max(), inf = std::numeric_limits<float>::infinity();

@@ -63,6 +63,7 @@ struct SoilColumn {
     e.periodic = {true, false, false};
     e.water_density = water_density;
     e.soils = {soil};
+    e.soils[0].reference_porosity = porosity;  // the retention curve holds at the initial porosity
     e.forcing = forcing;
     return e;
   }

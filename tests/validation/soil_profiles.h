@@ -13,6 +13,7 @@
 #include "server/core/field_frame.h"
 #include "server/core/soil_material.h"
 #include "server/core/types.h"
+#include "server/physics/swcc/grain_bound_water.h"
 #include "tests/reference/richards_1d.h"
 #include "tests/validation/validation_table.h"
 
@@ -66,7 +67,9 @@ inline double conserved_pore_water_volume(const SoilMaterial& soil, double poros
   static constexpr double x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
   static constexpr double w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
   const double k_w = soil.water_bulk_modulus;
-  const auto integrand = [&](double q) { return soil.hydraulic.capacity(-q, porosity, k_w) / (k_w + q); };
+  const auto integrand = [&](double q) {
+    return pore_water_capacity(soil.hydraulic, soil.reference_porosity, -q, porosity, k_w) / (k_w + q);
+  };
   const int pieces = std::max(1, int(std::ceil(std::fabs(p) / 1000.0)));
   const double width = p / pieces;
   double integral = 0;
@@ -74,7 +77,7 @@ inline double conserved_pore_water_volume(const SoilMaterial& soil, double poros
     const double mid = (k + 0.5) * width, half = 0.5 * width;
     for (int j = 0; j < 4; ++j) integral += w[j] * half * (integrand(mid + half * x[j]) + integrand(mid - half * x[j]));
   }
-  return porosity * soil.hydraulic.saturation(0.0) + integral;
+  return porosity * saturation_at_porosity(soil.hydraulic, soil.reference_porosity, 0.0, porosity) + integral;
 }
 
 // Σ_i V_i Θ*(p_w,i) over the soil particles of a frame (m³, per metre of depth in 2D), with

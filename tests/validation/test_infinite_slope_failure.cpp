@@ -70,6 +70,7 @@
 #include <string>
 #include <vector>
 
+#include "server/physics/swcc/grain_bound_water.h"
 #include "tests/reference/gardner_analytic.h"
 #include "tests/reference/infinite_slope.h"
 #include "tests/validation/case_run.h"
@@ -232,7 +233,8 @@ Outcome run_case(const std::vector<std::string>& overrides) {
     for (std::size_t i = 0; i < handoff.size(); ++i) {
       if (handoff.phase[i] != std::uint8_t(Phase::soil)) continue;
       const double p_c = -p->values[i];
-      const double c_r = soil.hydraulic.capacity(p_c, kPorosity, soil.water_bulk_modulus);
+      const double c_r =
+          pore_water_capacity(soil.hydraulic, soil.reference_porosity, p_c, kPorosity, soil.water_bulk_modulus);
       const double k = soil.saturated_conductivity * soil.hydraulic.relative_conductivity(p_c);
       out.seepage_dt = std::min(out.seepage_dt, out.gamma_w / soil.water_bulk_modulus * config.h * config.h * c_r / (2 * k));
     }

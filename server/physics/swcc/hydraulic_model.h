@@ -81,14 +81,28 @@ struct HydraulicModel {
     return invalid();
   }
 
-  // C_r = φ (S_w − K_w ∂S_w/∂p_c) (Eqs. 28b and 41, ERRATA.md row "Eq. 28b / 41"), the storage
-  // factor of the pore-water continuity (Eqs. 3a, 27a) and c_v of the seepage time step
-  // (Eq. 40c). K_w is the water bulk modulus (Section 2.2, Table 1: 2×10⁶ Pa; pass the value the
-  // pore-water equation of state uses). It follows from ∂(φ S_w ρ_w)/∂t with ∂p_w = (K_w/ρ_w) ∂ρ_w
-  // and ∂S_w/∂p_w = −∂S_w/∂p_c: since ∂S_w/∂p_c <= 0, C_r >= φ S_w, the drying soil stores more
-  // water per unit density change than the saturated one.
-  CASCADE_HD Real capacity(Real p_c, Real porosity, Real water_bulk_modulus) const {
-    return porosity * (saturation(p_c) - water_bulk_modulus * saturation_derivative(p_c));
+  // The residual water held at the grain contacts (pendular and adsorbed water) at the curve's
+  // reference porosity: S_min of Eqs. 14 and 42. The Liakopoulos fit (Eq. 43) has no residual
+  // water (its S_min is the end of the fit's range), so 0. grain_bound_water.h scales it with the
+  // porosity.
+  CASCADE_HD Real bound_saturation() const {
+    switch (kind) {
+      case Kind::van_genuchten: return van_genuchten.saturation_min();
+      case Kind::gardner: return gardner.saturation_min();
+      case Kind::liakopoulos: return Real(0);
+    }
+    return invalid();
+  }
+
+  // S_e = (S_w − S_b)/(S_max − S_b) in [0, 1] with S_b = bound_saturation(), from each model's
+  // own expression, so that it keeps its relative accuracy where S_w is within rounding of S_b.
+  CASCADE_HD Real effective_saturation(Real p_c) const {
+    switch (kind) {
+      case Kind::van_genuchten: return van_genuchten.effective_saturation(p_c);
+      case Kind::gardner: return gardner.decay(p_c);
+      case Kind::liakopoulos: return liakopoulos.saturation(p_c);
+    }
+    return invalid();
   }
 
  private:
