@@ -38,6 +38,7 @@
 #include "server/physics/solid_boundary.h"
 #include "server/physics/symplectic_verlet.h"
 #include "server/physics/time_step.h"
+#include "server/physics/wall_contact.h"
 #include "server/physics/water_interaction.h"
 
 namespace cascade {
@@ -110,6 +111,7 @@ class Simulation final : public Engine {
     if (has_soil_ && !relaxing())  // a_s is part of the seepage, held while relaxing
       launch(SeepageInertiaFilter<Real, Dim>{view(), soil_view(), sph_.h, Real(dt_)}, grid_.water_end, moving_);
     launch(SymplecticCorrector<Real, Dim>{view(), start_view(), grid_, Real(dt_)}, 0, moving_);
+    if (active_ > moving_) launch(WallContact<Real, Dim>{view(), grid_, neighbours_.view()}, 0, moving_);
     update_soil_stress(dt_);
     time_ += dt_;
     ++steps_;

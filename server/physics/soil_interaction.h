@@ -103,8 +103,7 @@ struct SoilInteraction {
       const Voigt<Real> stress_j = dummy ? soil.dummy_stress[j - moving_end]
                                          : total_stress(soil.effective_stress[j], soil.saturation[j], p.pressure[j]);
       const M stress_sum = stress_i + in_plane<Real, Dim>(stress_j);
-      force += stress_force_pair<Real, Dim>(volume_j, dummy ? wall_contact_stress<Real, Dim>(stress_sum, x_ij) : stress_sum,
-                                            grad_w);
+      force += stress_force_pair<Real, Dim>(volume_j, stress_sum, grad_w);
       const Real inv_r2_eta2 = Real(1) / (r2 + sph.eta2);
       const Real mu = viscosity_mu(sph.h, v_ij, x_ij, inv_r2_eta2);
       max_mu = std::fmax(max_mu, std::fabs(mu));

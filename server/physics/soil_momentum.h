@@ -87,18 +87,4 @@ CASCADE_HD inline Vec<Real, Dim> stress_force_pair(Real volume_j, const Mat<Real
   return volume_j * (stress_sum * grad_w);
 }
 
-// The stress sum σ_i + σ_b of a soil particle i and a dummy b (Eq. 26b), held to compression
-// along the pair's line: where x̂·(σ_i + σ_b)·x̂ > 0 (x̂ = x_ib/|x_ib|) the pair carries nothing.
-// A wall pushes on the soil and shears it where it presses on it, but does not pull it: the
-// tension a moist soil carries by its suction (Bishop's total stress σ' − S_w p_w, Eq. 7, is
-// tensile near an unsaturated surface) and the cohesion at a softened, sheared base would
-// otherwise pull the particles into the wall through its dummy layers (the tensile instability of
-// the pair; a sliding unsaturated layer lost particles through the bedrock,
-// cases/cascade_demo_2d.yaml). Soil resting or sliding on a wall presses on it and is unchanged.
-template <typename Real, int Dim>
-CASCADE_HD inline Mat<Real, Dim> wall_contact_stress(const Mat<Real, Dim>& stress_sum, const Vec<Real, Dim>& x_ib) {
-  const Real normal = x_ib.dot(stress_sum * x_ib);  // r² x̂·(σ_i + σ_b)·x̂
-  return normal > Real(0) ? Mat<Real, Dim>(Mat<Real, Dim>::Zero()) : stress_sum;
-}
-
 }  // namespace cascade

@@ -668,26 +668,5 @@ TEST(SoilModelFloat, AgreesWithDouble) {
   EXPECT_NEAR(qf, qd, 1e-3 * qd);
 }
 
-// A soil-wall pair of Eq. 26b carries compression only (soil_momentum.h, wall_contact_stress):
-// along its line the wall pushes, and shears where it pushes, but never pulls.
-TEST(WallContactStress, CompressionOnlyAlongThePairLine) {
-  const Vec<double, 2> below(0, 0.1);  // the soil particle 0.1 m above its dummy: x_ib along +z
-  Mat<double, 2> resting, suction, sliding, tension_across;
-  resting << -5e3, 0, 0, -12e3;          // geostatic compression
-  suction << 3.2e3, 0, 0, 3.2e3;         // −S_w p_w of Eq. 7 at 7 kPa, S_w 0.46, no effective stress
-  sliding << -4e3, 2e3, 2e3, -8e3;       // shear on a base that it presses
-  tension_across << 2e3, 0, 0, -1e3;     // tension along the wall, compression onto it
-  const auto contact = [](const Mat<double, 2>& sum, const Vec<double, 2>& x_ib) {
-    return Mat<double, 2>(wall_contact_stress<double, 2>(sum, x_ib));
-  };
-  const Mat<double, 2> none = Mat<double, 2>::Zero();
-  EXPECT_EQ(contact(resting, below), resting);
-  EXPECT_EQ(contact(suction, below), none);
-  EXPECT_EQ(contact(sliding, below), sliding);
-  EXPECT_EQ(contact(tension_across, below), tension_across);
-  // The same tensor seen across a side wall (x_ib along x) pulls: no force.
-  EXPECT_EQ(contact(tension_across, Vec<double, 2>(0.1, 0)), none);
-}
-
 }  // namespace
 }  // namespace cascade

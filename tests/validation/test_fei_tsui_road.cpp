@@ -23,9 +23,9 @@
 // the deposit's tip 9.1 m past the toe at rest: 69% short of the 29 m. The runout check is
 // therefore a known failure (RunoutAgainstKnillKnownFailure, not loosened): the section of Fig. 11 is lost and the assumed
 // one governs the runout (a first draft gave 16.6 m), while neither the ×100 K_sat (×10: 8.9 m)
-// nor the coarse dp (0.35 m: 8.7 m) moves it; and 3 of 802 soil particles still leave through
-// the decomposed tuff (docs/cases.md; NoSoilLeavesThroughTheTuffKnownFailure). The check of the
-// issue, |runout − 29 m| ≤ 25%, waits for the real section.
+// nor the coarse dp (0.35 m: 8.7 m) moves it. The check of the issue, |runout − 29 m| ≤ 25%, waits
+// for the real section. No soil may leave through the decomposed tuff or get deeper than dp/2
+// into it (before the impenetrable walls of docs/physics.md, 3 of 802 left).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -37,6 +37,7 @@
 
 #include "server/scenario/cascade_events.h"
 #include "tests/validation/case_run.h"
+#include "tests/validation/solid_depth.h"
 #include "tests/validation/validation_table.h"
 
 namespace cascade {
@@ -86,6 +87,8 @@ struct Outcome {
   Tip tip{};                        // at the end
   bool at_rest = false;
   std::size_t lost = 0, soil = 0;  // soil: all soil particles, lost ones included
+  testing::SolidDepth::Count inside{};  // the most particles deeper than dp/2 in the tuff, any sample
+  double half_spacing = 0;              // dp/2
 };
 
 // Runs the coarse case, sampling the events at the case's probe interval (as `cascade run` does).
@@ -96,6 +99,7 @@ Outcome simulate(bool rain, double duration) {
   if (!rain) overrides.push_back("hydraulics.rainfall_intensity=0");
   testing::CaseRun run("fei_tsui_road_2d.yaml", overrides);
   CascadeEventDetector events(run.spec, run.config.h, {});
+  const testing::SolidDepth solids(run.spec);
   const double interval = run.spec.output().probe_interval(), rest_window = 3.0;
   Outcome o;
   std::vector<double> tips;  // the deposit's tip at each sample
@@ -109,6 +113,10 @@ Outcome simulate(bool rain, double duration) {
     }
     o.tip = tip_of(frame, run.config.h);
     o.end = run.engine->time();
+    o.half_spacing = 0.5 * run.config.dp;
+    const testing::SolidDepth::Count now = solids.inside(frame, o.half_spacing);
+    o.inside.deeper = std::max(o.inside.deeper, now.deeper);
+    o.inside.deepest = std::max(o.inside.deepest, now.deepest);
     tips.push_back(o.tip.deposit);
     if (!rain) {
       if (o.end >= duration) break;
@@ -146,6 +154,16 @@ TEST(FeiTsuiRoad2D, FailsAfterPondingNotWithoutRain) {
   // The control: the same slope without rain, over 1.5 times the time the rain took to fail it.
   const Outcome dry = simulate(false, 1.5 * wet.onset);
   EXPECT_LT(dry.onset, 0) << "the slope failed without rain at t = " << dry.onset << " s";
+  // The decomposed tuff, a solid boundary (Section 4.3), holds the debris: none leaves through it
+  // and none gets into it (docs/physics.md, "Impenetrable walls"; before them 3 of 802 soil
+  // particles went through, one 12 m deep at 46 m/s).
+  char metric[64];
+  std::snprintf(metric, sizeof metric, "soil particles that left the domain (of %zu)", wet.soil);
+  CASCADE_VALIDATE({.case_name = kCase,
+                    .reference = "the decomposed tuff, a solid boundary (paper Section 4.3): no soil leaves through it",
+                    .metric = metric, .measured = double(wet.lost),
+                    .reference_value = 0, .bound = testing::Bound::at_most, .tolerance_source = "exact"});
+  testing::validate_outside_solids(kCase, wet.inside, wet.half_spacing, "at the probe samples");
 }
 
 // Known failure (the header says why: the assumed section governs the runout): the deposit's tip
@@ -158,19 +176,6 @@ TEST(FeiTsuiRoad2D, RunoutAgainstKnillKnownFailure) {
                     .measured = wet.tip.deposit - kToe, .reference_value = kObservedRunout,
                     .tolerance = kRelativeTolerance, .relative = true,
                     .tolerance_source = "the band the issue asks (|runout − 29 m| ≤ 25%), no stated source"});
-}
-
-// Known failure (issue 13, walls that hold): no soil particle may leave through the decomposed
-// tuff's dummy layers. Measured 3 of 802 lost (one 12 m inside the tuff at 46 m/s, docs/cases.md).
-TEST(FeiTsuiRoad2D, NoSoilLeavesThroughTheTuffKnownFailure) {
-  const Outcome& wet = with_rain();
-  ASSERT_GT(wet.soil, 0u);
-  char metric[64];
-  std::snprintf(metric, sizeof metric, "soil particles that left the domain (of %zu)", wet.soil);
-  CASCADE_VALIDATE({.case_name = kCase,
-                    .reference = "the decomposed tuff, a solid boundary (paper Section 4.3): no soil leaves through it",
-                    .metric = metric, .measured = double(wet.lost),
-                    .reference_value = 0, .bound = testing::Bound::at_most, .tolerance_source = "exact"});
 }
 
 }  // namespace
