@@ -14,7 +14,17 @@
 // log2 of the ratio, must lie within Balmforth & Kerswell's 0.9 ± 0.1 widened to [0.8, 1.1]
 // (Lube's linear branch is 1).
 // Without the case's viscosity_switch (the compression switch on the soil's artificial viscosity,
-// soil_viscosity_switch.h) the run-outs are 0.47 and 0.93, 22% short: this test fails on them.
+// soil_viscosity_switch.h) the run-outs were 0.47 and 0.93, 22% short: this test failed on them.
+//
+// Known failure since 2026-12-03 (README, "Known failures"). The run-outs above held because the
+// column's residual pore water was as stiff as a saturated soil's: the flow's dilation drove the
+// suction from 10 kPa to 700 kPa, and Bishop's stress (Eq. 7) gave the "dry" sand up to 600 Pa of
+// apparent confinement (its mean effective pressure is about 400 Pa). With the residual water
+// moving with the grains (docs/physics.md, "Grain-bound water") the suction stays at 10 kPa and the
+// run-outs are 1.05 and 2.31 with the switch (1.68 at a = 1 without it): a dry granular flow of
+// this model runs out far past Lube's law. Measured at a = 1: 20-30% of the moving particles carry
+// no effective stress at all (at the Drucker-Prager apex, c = 0), so they flow without friction.
+// Why they lose their stress is not traced yet (issue 13).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -72,7 +82,7 @@ Collapse collapse(double aspect_ratio) {
   return c;
 }
 
-TEST(ColumnCollapse2D, RunoutAgainstLube2005AtTwoAspectRatios) {
+TEST(ColumnCollapse2D, RunoutAgainstLube2005AtTwoAspectRatiosKnownFailure) {
   const double aspect[2] = {0.5, 1.0};
   double runout[2];
   for (int k = 0; k < 2; ++k) {
