@@ -8,9 +8,11 @@
 // and opposite; and the suction of a dry skeleton (p_w = −10 kPa at S_w = 0.001) does not pull
 // free water into it (docs/physics.md, "Soil-water interface"). A saturated soil (S_w = 1) is
 // unchanged. The pair's pressure is held at zero or above: the contact between free water and the
-// skeleton carries no tension (interface_contact_pressure, water_momentum.h). A dummy particle's
-// pair is Eq. 23b's with p_b, tension included: the wall's impenetrability is the kinematic
-// condition of wall_contact.h, not a clamp on this pair (docs/physics.md, "Impenetrable walls").
+// skeleton carries no tension (interface_contact_pressure, water_momentum.h). So is a dummy
+// particle's pair, p_i + p_b >= 0: a wall pushes water, it never pulls it in (a water particle in
+// tension next to the slope under a sliding mass was drawn through the dummy layers; with the
+// impenetrable walls of wall_contact.h and the pair in tension, the storm demo's channel water
+// blew up 38 s after the failure: docs/physics.md, "Solid boundary").
 #pragma once
 
 #include <cmath>
@@ -67,9 +69,11 @@ struct WaterInteraction {
       const bool soil_j = saturation != nullptr && j >= grid.water_end && j < grid.moving_end;
       const Real pore_fraction_j = soil_j ? saturation[j] : Real(1);
       const Real pore_pressure_j = pore_fraction_j * p.pressure[j];
-      // A soil pair's p_i + S_w,j p_w,j is held at >= 0 (compression only), written as p_i + p_j'.
+      // A soil pair's p_i + S_w,j p_w,j and a wall pair's p_i + p_b are held at >= 0 (compression
+      // only), written as p_i + p_j'.
+      const bool wall_j = j >= grid.moving_end;
       const Real seen_pressure_j =
-          soil_j ? interface_contact_pressure(p_i + pore_pressure_j) - p_i : p.pressure[j];
+          (soil_j || wall_j) ? interface_contact_pressure(p_i + pore_pressure_j) - p_i : p.pressure[j];
       const Vec<Real, Dim> pressure = pressure_force_pair(volume_j, p_i, seen_pressure_j, grad_w);
       const Real inv_r2_eta2 = Real(1) / (r2 + sph.eta2);
       const Real mu = viscosity_mu(sph.h, v_ij, x_ij, inv_r2_eta2);

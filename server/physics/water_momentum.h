@@ -20,6 +20,9 @@ CASCADE_HD inline Vec<Real, Dim> pressure_force_pair(Real volume_j, Real p_i, Re
 // (the interface meets the free surface wherever a slide enters water) and the two part; SPH would
 // otherwise pull them together with the tension of its own separating pairs (the tensile
 // instability), and a sliding dry mass dragged water particles into the air at tens of m/s.
+// The water's pair with a dummy particle, p_w + p_b, is held the same way (water_interaction.h):
+// a solid wall pushes the water and never pulls it into itself (docs/physics.md, "Solid
+// boundary").
 template <typename Real>
 CASCADE_HD inline Real interface_contact_pressure(Real pair_pressure) {
   return pair_pressure > Real(0) ? pair_pressure : Real(0);
