@@ -121,13 +121,11 @@ class CascadeDemo(unittest.TestCase):
         header = (self.out / "probes.csv").read_text().splitlines()[0]
         self.assertIn("gauge_far", header)
 
-    # Known failure (README, "Known failures"; issue 13, walls that hold): in the seconds after the
-    # slide enters the channel, particles leave the domain (measured 2026-12-02: 6 in the demo's
-    # first 4.3 s after the failure; in an earlier form of the soil-wall contact, water on the
-    # channel floor that sank through its dummy layers).
-    # unittest counts an unexpected success as a failure: this check tells when it holds.
-    @unittest.expectedFailure
-    def test_no_particle_leaves_the_domain_KnownFailure(self):
+    # Walls that hold (issue 13): no particle leaves the domain in the demo or the run beside it.
+    # A known failure until 2026-12-03 (6 to 14 particles lost in the seconds after the slide
+    # entered the channel, water on the channel floor sinking through its dummy layers); it holds
+    # since the impenetrable walls (docs/physics.md, "Impenetrable walls").
+    def test_no_particle_leaves_the_domain(self):
         lost = [e for e in self.summary["events"] if e["kind"] == "particles_lost"]
         lost += [e for e in self.plain_events if e.kind == "particles_lost"]
         self.assertTrue(clitest.record_validation(
