@@ -59,6 +59,10 @@ class SolidDepth {
   struct Count {
     std::size_t deeper = 0;
     double deepest = 0;
+    void keep_worst(const Count& c) {  // over samples: the most particles at once, the deepest
+      deeper = std::max(deeper, c.deeper);
+      deepest = std::max(deepest, c.deepest);
+    }
   };
   Count inside(const FieldFrame& f, double limit) const {
     Count c;

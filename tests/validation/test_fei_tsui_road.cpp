@@ -114,9 +114,7 @@ Outcome simulate(bool rain, double duration) {
     o.tip = tip_of(frame, run.config.h);
     o.end = run.engine->time();
     o.half_spacing = 0.5 * run.config.dp;
-    const testing::SolidDepth::Count now = solids.inside(frame, o.half_spacing);
-    o.inside.deeper = std::max(o.inside.deeper, now.deeper);
-    o.inside.deepest = std::max(o.inside.deepest, now.deepest);
+    o.inside.keep_worst(solids.inside(frame, o.half_spacing));
     tips.push_back(o.tip.deposit);
     if (!rain) {
       if (o.end >= duration) break;

@@ -82,9 +82,7 @@ TEST(LandslideTsunami2d, WaveReachesGaugesInOrderAndGauge1MatchesHellerHager) {
     const std::vector<double> values = sampler.sample(f);
     time.push_back(f.time);
     for (int g = 0; g < 4; ++g) eta[g].push_back(values[g] - still[g]);
-    const testing::SolidDepth::Count now = solids.inside(f, half_spacing);
-    inside.deeper = std::max(inside.deeper, now.deeper);
-    inside.deepest = std::max(inside.deepest, now.deepest);
+    inside.keep_worst(solids.inside(f, half_spacing));
     const double previous_z = centroid_z, previous_speed = centroid_speed;
     soil_centroid(f, &centroid_z, &centroid_speed);
     if (std::isnan(impact_speed) && centroid_z <= kDepth) {  // linear in between the samples

@@ -33,9 +33,7 @@ void run_against_the_wall(const std::string& case_name, const std::vector<std::s
   testing::SolidDepth::Count worst = solids.inside(start, half_spacing);
   for (double t = sample; t <= end + 1e-9; t += sample) {
     run.run_until(t);
-    const testing::SolidDepth::Count now = solids.inside(run.engine->frame(), half_spacing);
-    worst.deeper = std::max(worst.deeper, now.deeper);
-    worst.deepest = std::max(worst.deepest, now.deepest);
+    worst.keep_worst(solids.inside(run.engine->frame(), half_spacing));
   }
   std::printf("%s: deepest %.3g mm inside a wall, at most %zu particles deeper than dp/2\n", case_name.c_str(),
               1e3 * worst.deepest, worst.deeper);
