@@ -10,7 +10,6 @@
 // Each also keeps every particle in the domain.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
