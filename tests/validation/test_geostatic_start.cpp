@@ -259,12 +259,10 @@ const std::vector<std::string> kFeiTsuiWithoutRain = {"dp=0.5", "hydraulics.rain
 
 // Known failure (README, "Known failures"): Fei Tsui Road's altered tuff stands against a vertical
 // back wall (x = −60 m) with 50 kPa of suction, which makes its total stress tensile near the
-// surface: the normal stress on the wall at equilibrium is zero, right at the switch of the
-// compression-only soil-wall pair (wall_contact_stress, soil_momentum.h), and the relaxation
-// stalls there (measured 2026-12-02: force ratio 0.18 and 2.2e-2 m/s after 20,000 steps). Contact
-// laws continuous at the switch relaxed it (2,752 steps with the tensile normal traction dropped
-// and the shear kept), but let the landslide flume's dry mass through the slope (docs/physics.md,
-// "Geostatic start"); and relaxed, the undamped slope left rest from its thin toe (0.94 m/s in 10 s).
+// surface. Until 2026-12-03 the soil-wall pair carried compression only, and the relaxation
+// stalled at its switch (force ratio 0.18 and 2.2e-2 m/s after 20,000 steps). With the pair as
+// printed and the impenetrable walls (docs/physics.md, "Geostatic start") it relaxes (force ratio
+// 9.8e-5), but the undamped slope then leaves rest from its thin toe (0.87 m/s in 10 s).
 TEST(GeostaticStart, FeiTsuiRoadRelaxesAndStaysAtRestKnownFailure) {
   testing::CaseRun run("fei_tsui_road_2d.yaml", kFeiTsuiWithoutRain);
   expect_relaxed_and_at_rest(*run.engine, "Fei Tsui Road without rain, dp 0.5 m (cases/fei_tsui_road_2d.yaml)",
