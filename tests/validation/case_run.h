@@ -1,5 +1,5 @@
 // Runs a case file through the same path as `cascade run` (loader → particle builder → engine, with
-// the case's stages) for
+// the case's stages and rain series) for
 // validation tests, without writing files. A case's initialisation stage runs in the constructor,
 // as the runner runs it before t = 0.
 #pragma once
@@ -12,6 +12,7 @@
 #include "server/scenario/case_loader.h"
 #include "server/scenario/engine_setup.h"
 #include "server/scenario/particle_builder.h"
+#include "server/scenario/rain_series.h"
 #include "server/scenario/stage_setup.h"
 
 namespace cascade::testing {
@@ -34,11 +35,21 @@ struct CaseRun {
   }
   std::uint64_t initialisation_steps = 0;  // the case's initialisation stage, run by the constructor
 
+  // One step, after the case's rain series (hydraulics.rainfall) has set the intensity due at the
+  // engine's time, as the runner and the server apply it (server/scenario/rain_series.h).
+  void step() {
+    if (const auto due = due_rain_change(spec, *engine)) {
+      HydraulicForcing next = engine->forcing();
+      next.rainfall_intensity = *due;
+      engine->set_forcing(next);
+    }
+    engine->step();
+  }
   void run_until(double t) {
-    while (engine->time() < t) engine->step();
+    while (engine->time() < t) step();
   }
   void run_steps(std::uint64_t n) {
-    for (std::uint64_t k = 0; k < n; ++k) engine->step();
+    for (std::uint64_t k = 0; k < n; ++k) step();
   }
 };
 

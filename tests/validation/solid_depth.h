@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -94,5 +95,24 @@ inline void validate_outside_solids(const std::string& case_name, const SolidDep
                     .measured = 1e3 * worst.deepest, .reference_value = 1e3 * half_spacing, .bound = Bound::at_most,
                     .tolerance_source = "dp/2: a centre deeper has its whole lattice cell inside the solid"});
 }
+
+// A run's wall figures over its samples: every frame passed to `sample` is counted, `validate`
+// prints and records the worst of them (validate_outside_solids).
+class WallWatch {
+ public:
+  explicit WallWatch(const v1::ScenarioSpec& spec) : solids_(spec), half_spacing_(0.5 * spec.dp()) {}
+  void sample(const FieldFrame& f) { worst_.keep_worst(solids_.inside(f, half_spacing_)); }
+  const SolidDepth::Count& worst() const { return worst_; }
+  void validate(const std::string& case_name, const std::string& when) const {
+    std::printf("%s: deepest %.3g mm inside a wall, at most %zu particles deeper than dp/2 %s\n", case_name.c_str(),
+                1e3 * worst_.deepest, worst_.deeper, when.c_str());
+    validate_outside_solids(case_name, worst_, half_spacing_, when);
+  }
+
+ private:
+  SolidDepth solids_;
+  double half_spacing_;
+  SolidDepth::Count worst_;
+};
 
 }  // namespace cascade::testing

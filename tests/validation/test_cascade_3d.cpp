@@ -10,6 +10,7 @@
 #include "server/scenario/case_loader.h"
 #include "server/scenario/particle_builder.h"
 #include "tests/validation/case_run.h"
+#include "tests/validation/solid_depth.h"
 #include "tests/validation/validation_table.h"
 
 namespace cascade {
@@ -32,13 +33,17 @@ TEST(Cascade3d, BuildsAboutThePapersParticleCountAtItsResolution) {
 }
 
 // At dp = 0.4 m (about 2·10⁴ particles): the rain enters the slope's surface, the pore pressure
-// there rises, nothing is lost and every value stays finite over 100 steps.
+// there rises, nothing is lost or inside the walls and every value stays finite over 100 steps.
 TEST(Cascade3d, CoarseRunStartsRainingWithEveryParticleKept) {
   testing::CaseRun run("cascade_3d.yaml", {"dp=0.4"});
   const FieldFrame f0 = run.engine->frame();
+  testing::WallWatch walls(run.spec);  // issue 13, item 1
+  walls.sample(f0);
   run.run_steps(100);
   const FieldFrame f1 = run.engine->frame();
+  walls.sample(f1);
   ASSERT_EQ(f1.size(), f0.size());
+  walls.validate(kCase + ", dp = 0.4 m", "at the start and after 100 steps");
   CASCADE_VALIDATE({.case_name = kCase, .reference = "mass conservation: no particle leaves the domain",
                     .metric = "particles lost in 100 steps at dp = 0.4 m",
                     .measured = double(run.engine->lost_particles()), .reference_value = 0,

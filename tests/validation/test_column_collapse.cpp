@@ -34,6 +34,7 @@
 
 #include "tests/reference/column_collapse.h"
 #include "tests/validation/case_run.h"
+#include "tests/validation/solid_depth.h"
 #include "tests/validation/validation_table.h"
 
 namespace cascade {
@@ -58,9 +59,12 @@ Collapse collapse(double aspect_ratio) {
   testing::CaseRun run("column_collapse_2d.yaml", {"dp=" + std::to_string(kDp), box});
   const double earliest = 3 * std::sqrt(h0 / g), at_rest = 0.01 * std::sqrt(2 * g * h0), latest = 1.5;
   Collapse c{};
+  testing::WallWatch walls(run.spec);  // issue 13, item 1
+  walls.sample(run.engine->frame());
   for (double t = 0.01;; t += 0.01) {
     run.run_until(t);
     const FieldFrame frame = run.engine->frame();
+    walls.sample(frame);
     double front = 0, speed = 0;
     const FieldFrame::RealField* velocity = frame.find("velocity");
     for (std::size_t i = 0; i < frame.size(); ++i) {
@@ -78,6 +82,8 @@ Collapse collapse(double aspect_ratio) {
   CASCADE_VALIDATE({.case_name = kCase, .reference = "mass conservation: no particle leaves the domain",
                     .metric = metric, .measured = double(run.engine->lost_particles()), .reference_value = 0,
                     .bound = testing::Bound::at_most, .tolerance_source = "exact"});
+  std::snprintf(metric, sizeof metric, "a = %.1f, at the 10 ms samples", aspect_ratio);
+  walls.validate(kCase, metric);
   EXPECT_LT(c.speed, at_rest) << "a = " << aspect_ratio << ": not at rest by t = " << c.time << " s";
   return c;
 }

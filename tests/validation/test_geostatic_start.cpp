@@ -30,6 +30,7 @@
 
 #include "server/physics/swcc/gardner.h"
 #include "tests/validation/case_run.h"
+#include "tests/validation/solid_depth.h"
 #include "tests/validation/soil_column.h"
 #include "tests/validation/validation_table.h"
 
@@ -252,7 +253,11 @@ TEST(GeostaticStart, DemoSlopeRingsWithoutRelaxation) {
 
 TEST(GeostaticStart, DemoSlopeRelaxesAndStaysAtRest) {
   testing::CaseRun run("cascade_demo_2d.yaml", kDemoWithoutRain);
+  testing::WallWatch walls(run.spec);  // issue 13, item 1
+  walls.sample(run.engine->frame());
   expect_relaxed_and_at_rest(*run.engine, kDemoCase, kDemoSoftening);
+  walls.sample(run.engine->frame());
+  walls.validate(kDemoCase, "at the start and after the rest");
 }
 
 const std::vector<std::string> kFeiTsuiWithoutRain = {"dp=0.5", "hydraulics.rainfall_intensity=0"};

@@ -74,6 +74,7 @@
 #include "tests/reference/gardner_analytic.h"
 #include "tests/reference/infinite_slope.h"
 #include "tests/validation/case_run.h"
+#include "tests/validation/solid_depth.h"
 #include "tests/validation/validation_table.h"
 
 namespace cascade {
@@ -115,6 +116,7 @@ struct Outcome {
   double seepage_dt = 0, first_dynamic_dt = 0, largest_dynamic_dt = 0, cfl = 0;
   double speed = 0, speed_after = -1;                   // largest soil speed, when it passed 0.1 m/s
   double wall_seconds = 0;
+  testing::SolidDepth::Count inside{};                  // in the bedrock: the start, hand-off, every dynamic step
 };
 
 std::map<double, std::vector<std::size_t>> soil_layers(const FieldFrame& f) {
@@ -163,6 +165,8 @@ Outcome run_case(const std::vector<std::string>& overrides) {
   const reference::GardnerColumnSolution heads(column);
   const auto head_at = [&](double n, double t) { return heads.pressure_head(n * cb, t); };
 
+  const testing::SolidDepth bedrock(run.spec);
+  out.inside = bedrock.inside(run.engine->frame(), 0.5 * out.dp);
   // Geostatic stage.
   while (run.engine->stage() == 0) run.engine->step();
   out.geostatic_steps = run.engine->step_count();
@@ -207,6 +211,7 @@ Outcome run_case(const std::vector<std::string>& overrides) {
   for (const StageChange& c : run.engine->take_stage_changes())
     if (c.to == 2) out.switch_time = c.time, out.switch_reason = c.reason;
   const FieldFrame handoff = run.engine->frame();
+  out.inside.keep_worst(bedrock.inside(handoff, 0.5 * out.dp));
   {
     const auto* p = handoff.find("pore_pressure");
     double lo = 1e300, hi = -1e300;
@@ -245,7 +250,9 @@ Outcome run_case(const std::vector<std::string>& overrides) {
     run.engine->step();
     if (out.first_dynamic_dt == 0) out.first_dynamic_dt = run.engine->last_dt();
     out.largest_dynamic_dt = std::max(out.largest_dynamic_dt, run.engine->last_dt());
-    out.speed = largest_soil_speed(run.engine->frame());
+    const FieldFrame now = run.engine->frame();
+    out.speed = largest_soil_speed(now);
+    out.inside.keep_worst(bedrock.inside(now, 0.5 * out.dp));
     if (out.speed > 0.1) {
       out.speed_after = run.engine->time() - out.switch_time;
       break;
@@ -386,6 +393,8 @@ void validate_motion(const Outcome& o, const std::string& run) {
                     .metric = "time from the hand-off to a soil speed above 0.1 m/s (never: no value), " + run + " (s)",
                     .measured = o.speed_after >= 0 ? o.speed_after : INFINITY, .reference_value = 5.0,
                     .bound = testing::Bound::at_most, .tolerance_source = source});
+  testing::validate_outside_solids(kCase + ", " + run, o.inside, 0.5 * o.dp,
+                                   "at the start, the hand-off and every step of the dynamic stage");
 }
 
 TEST(InfiniteSlopeFailure, GeostaticStageCarriesTheSlopesStresses) {

@@ -72,9 +72,8 @@ TEST(LandslideTsunami2d, WaveReachesGaugesInOrderAndGauge1MatchesHellerHager) {
   std::vector<double> time;
   std::vector<std::vector<double>> eta(4);
   double centroid_z = 0, centroid_speed = 0, impact_speed = NAN, impact_time = NAN;
-  const testing::SolidDepth solids(run.spec);
-  const double half_spacing = 0.5 * run.config.dp;
-  testing::SolidDepth::Count inside = solids.inside(start, half_spacing);
+  testing::WallWatch walls(run.spec);
+  walls.sample(start);
   soil_centroid(start, &centroid_z, &centroid_speed);
   for (double t = kSampleInterval; t <= run.spec.end_time() + 1e-9; t += kSampleInterval) {
     run.run_until(t);
@@ -82,7 +81,7 @@ TEST(LandslideTsunami2d, WaveReachesGaugesInOrderAndGauge1MatchesHellerHager) {
     const std::vector<double> values = sampler.sample(f);
     time.push_back(f.time);
     for (int g = 0; g < 4; ++g) eta[g].push_back(values[g] - still[g]);
-    inside.keep_worst(solids.inside(f, half_spacing));
+    walls.sample(f);
     const double previous_z = centroid_z, previous_speed = centroid_speed;
     soil_centroid(f, &centroid_z, &centroid_speed);
     if (std::isnan(impact_speed) && centroid_z <= kDepth) {  // linear in between the samples
@@ -130,7 +129,7 @@ TEST(LandslideTsunami2d, WaveReachesGaugesInOrderAndGauge1MatchesHellerHager) {
                     .tolerance_source = "the relation's data scatter as remembered; no stored source states it "
                                         "(docs/cases.md, \"Landslide tsunami\")"});
   testing::validate_nothing_lost(case_name, n0, n1, "at the end");
-  testing::validate_outside_solids(case_name, inside, half_spacing, "at the 5 ms samples");
+  walls.validate(case_name, "at the 5 ms samples");
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "tests/validation/case_run.h"
+#include "tests/validation/solid_depth.h"
 #include "tests/validation/validation_table.h"
 
 namespace cascade {
@@ -69,11 +70,16 @@ Statics statics(const FieldFrame& f) {
 
 TEST(SubmergedLayer, HydrostaticPorePressureAndBuoyantWeightWithoutDrift) {
   testing::CaseRun run("submerged_layer_2d.yaml");
+  testing::WallWatch walls(run.spec);  // issue 13, item 1
+  walls.sample(run.engine->frame());
   run.run_steps(5000);
+  walls.sample(run.engine->frame());
   const Statics half = statics(run.engine->frame());
   run.run_steps(5000);
+  walls.sample(run.engine->frame());
   const Statics end = statics(run.engine->frame());
   const std::string case_name = "Submerged soil layer 2D (cases/submerged_layer_2d.yaml)";
+  walls.validate(case_name, "at 0, 5000 and 10⁴ steps");
   const std::string pressure = "hydrostatic from the free water surface, ρ_w g (z_s − z) (Terzaghi 1943)";
   const std::string issue = "the issue's tolerance: 2% of the largest value, at the floor";
   const std::string at_rest = "at rest: nothing may move";

@@ -20,6 +20,7 @@
 
 #include "tests/reference/terzaghi.h"
 #include "tests/validation/case_run.h"
+#include "tests/validation/solid_depth.h"
 #include "tests/validation/validation_table.h"
 
 namespace cascade {
@@ -71,8 +72,11 @@ void consolidate(const std::vector<std::string>& overrides) {
   const double water_bulk_modulus = run.spec.materials(0).soil().water_bulk_modulus();
   // T_v = 0.02 is counted (and printed with CASCADE_PRINT) but not compared: the sudden load still
   // rings the column there (docs/physics.md, "Terzaghi consolidation").
+  testing::WallWatch walls(run.spec);  // issue 13, item 1
+  walls.sample(run.engine->frame());
   for (double tv : {0.02, 0.05, 0.2, 0.5}) {
     run.run_until(tv * l.top * l.top / l.cv);
+    walls.sample(run.engine->frame());
     std::size_t checked = 0;
     const double worst =
         worst_error(run.engine->frame(), l, run.engine->time(), std::getenv("CASCADE_PRINT"), &checked);
@@ -87,6 +91,9 @@ void consolidate(const std::vector<std::string>& overrides) {
                       .metric = metric, .measured = worst, .reference_value = 0.05, .bound = testing::Bound::at_most,
                       .tolerance_source = "the issue's tolerance: 5% of u_0 at every particle"});
   }
+  walls.validate("Terzaghi consolidation (cases/terzaghi.yaml), K_w = " + std::to_string(int(water_bulk_modulus / 1e6)) +
+                     " MPa",
+                 "at the start and T_v = 0.02, 0.05, 0.2, 0.5");
 }
 
 TEST(Terzaghi, ExcessPorePressureAgainstSeries) { consolidate({}); }
