@@ -103,6 +103,10 @@ class Engine {
   // throws std::invalid_argument when the state belongs to another kind of engine or particle set.
   virtual EngineState state() const = 0;
   virtual void restore(const EngineState& state) = 0;
+  // After restore() of a state whose pore pressures another solver advanced (the implicit stage):
+  // forms the seepage discharge (Eq. 27b) of those pressures, which frames report and the next
+  // step's surface switch (Eq. 39) reads as the last evaluation's, in place of the stale one.
+  virtual void refresh_seepage() {}
 
   // Stages (server/solver/staged_engine.h): the index of the one running (into the case's stages;
   // 0 for a run of one stage), the switches since the last call, and the operator's hand-over to

@@ -117,6 +117,20 @@ class Simulation final : public Engine {
     ++steps_;
   }
 
+  // The seepage discharge at the present state, for a state whose pore water another solver
+  // advanced with the skeleton at rest (the implicit stage), so that its frames carry the Darcy
+  // flux of its pore pressures: the dummies' soil side, the pore-water gradient and Eq. 27b as a
+  // step's first evaluation forms them, nothing else. It writes no carried array but `seepage`, so
+  // a state taken after it continues as the engine does; the next step's surface switch (Eq. 39)
+  // reads the discharge of the state it starts from.
+  void refresh_seepage() override {
+    if (!has_soil_ || relaxing()) return;
+    if (!lists_hold()) sort_by_cell();
+    launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
+    pore_water_gradients();
+    seepage_discharge();
+  }
+
   double time() const override { return time_; }
   std::uint64_t step_count() const override { return steps_; }
   double last_dt() const override { return dt_; }
@@ -461,10 +475,7 @@ class Simulation final : public Engine {
     boundary_values(half_step);
     density_gradients();
     const std::uint32_t water = grid_.water_end;
-    if (has_soil_ && !relaxing()) {
-      launch(SeepageDischarge<Real, Dim>{view(), soil_view(), sph_, surface_forcing()}, water, moving_);
-      launch(SolidBoundarySeepage<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
-    }
+    if (has_soil_ && !relaxing()) seepage_discharge();
     launch(WaterInteraction<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_,
                                        has_soil_ ? raw(saturation_) : nullptr},
            0, water);
@@ -488,15 +499,25 @@ class Simulation final : public Engine {
     launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
   }
 
+  // The seepage discharge (Eq. 27b) and its wall values (Eqs. 35b, 37).
+  void seepage_discharge() {
+    launch(SeepageDischarge<Real, Dim>{view(), soil_view(), sph_, surface_forcing()}, grid_.water_end, moving_);
+    launch(SolidBoundarySeepage<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
+  }
+
   // Water pressure (Eq. 6) and the renormalised gradients of the water and pore-water densities
   // (Eq. 25), each over its own particles.
   void density_gradients() {
     const std::uint32_t water = grid_.water_end;
     launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, water);
-    if (has_soil_ && !relaxing())
-      launch(RenormalisedDensityGradient<Real, Dim, true>{view(), grid_, neighbours_.view(), sph_, water_, soil_view(),
-                                                          water_.rho0},
-             water, moving_);
+    if (has_soil_ && !relaxing()) pore_water_gradients();
+  }
+
+  // The soil's renormalised gradients of the pore-water density and pressure (Eq. 25).
+  void pore_water_gradients() {
+    launch(RenormalisedDensityGradient<Real, Dim, true>{view(), grid_, neighbours_.view(), sph_, water_, soil_view(),
+                                                        water_.rho0},
+           grid_.water_end, moving_);
   }
 
   SoilView<Real, Dim> soil_view() {

@@ -36,6 +36,7 @@ void StagedEngine::sync() const {
   if (!unsynced_) return;
   pore_water_state_.forcing = dynamic_->forcing();  // as steered since the last step
   dynamic_->restore(pore_water_state_);
+  dynamic_->refresh_seepage();  // the implicit stage moves no seepage array: its frames need one
   unsynced_ = false;
 }
 

@@ -1,8 +1,7 @@
 // Issue 13, item 5: a smooth pore-pressure field. The particle-to-particle noise of p_w (the
 // largest residual of a local linear fit, soil_profiles.h: pore_pressure_noise) below 2% of the
 // field's range over the soil, in the infiltration column (paper Section 4.1), the Liakopoulos
-// column (Section 4.2), the storm demo's slope in its rain stage, and the accelerated demo's slope
-// on the explicit step (a known failure).
+// column (Section 4.2), and the storm demo's and the accelerated demo's slopes (known failures).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -49,10 +48,18 @@ TEST(PorePressureNoise, LiakopoulosColumn) {
   }
 }
 
-// The README's main job (cases/cascade_storm_2d.yaml): the same slope at its real K_sat under the
-// storm, its rain stage on the implicit pore-water step, at 1 h and 3 h of rain (the failure comes
-// at about 4.3 h).
-TEST(PorePressureNoise, StormDemoRainStage) {
+// Known failure: the README's main job (cases/cascade_storm_2d.yaml), the same slope at its real
+// K_sat under the storm, its rain stage on the implicit pore-water step, at 1 h and 3 h of rain (the
+// failure comes at about 4.3 h). Measured when written: 12.8% and 7.9% of the range. The field is
+// smooth there but curved: the largest residual is the top particle of the toe's vertical face,
+// where the wetting front from the slope meets it (p_w −5084, −5624, −6041 Pa down the face, a
+// second difference of 123 Pa, and the one-sided fit's residual 247 Pa), and down the column at
+// x = 2.05 m the residual keeps one sign over seven particles (the front's curvature, which a
+// linear fit reads as −p''⟨r²⟩/2), not the odd-even alternation of the explicit demo below. The
+// staircase of the 40° surface (two particles on a tread every sixth column) alternates by some
+// 30 Pa (1.5%). The noise measure has to separate resolved curvature from particle noise before
+// this figure says which it is (issue 13, item 5).
+TEST(PorePressureNoise, StormDemoRainStageKnownFailure) {
   testing::CaseRun run("cascade_storm_2d.yaml");
   const std::string name = "Storm cascade demo, rain stage (cases/cascade_storm_2d.yaml)";
   for (double hours : {1.0, 3.0}) {
