@@ -1,5 +1,8 @@
-// Wendland C2 smoothing kernel (paper Eq. 20 with ERRATA.md: factor 3/(4h), 7/(4πh²), 21/(16πh³)).
+// Wendland C2 smoothing kernel (paper Eq. 20 with ERRATA.md: factor 3/(4h), 7/(4πh²), 21/(16πh³)),
+// its gradient optionally normalised on the particle lattice (lattice_gradient_moment below).
 #pragma once
+
+#include <cmath>
 
 #include "server/core/types.h"
 
@@ -11,11 +14,12 @@ struct WendlandC2 {
   Real alpha_d;   // normalisation factor α_d of Eq. 20
   Real inv_h;
   Real support2;  // (2h)², the squared support radius
+  Real gradient_scale;  // 1, or 1/m of the lattice (lattice_gradient_moment)
 
   WendlandC2() = default;
-  explicit WendlandC2(Real smoothing_length)
+  explicit WendlandC2(Real smoothing_length, Real gradient_scale = Real(1))
       : h(smoothing_length), alpha_d(normalisation(smoothing_length)), inv_h(Real(1) / smoothing_length),
-        support2(Real(4) * smoothing_length * smoothing_length) {}
+        support2(Real(4) * smoothing_length * smoothing_length), gradient_scale(gradient_scale) {}
 
   static Real normalisation(Real h) {
     constexpr double pi = 3.14159265358979323846;
@@ -34,14 +38,38 @@ struct WendlandC2 {
   }
 
   // ∇_i W(x_i - x_j) = gradient_factor(r) · x_ij. From dW/dr = -5 α_d q (1 - q/2)³ / h, so
-  // the factor (dW/dr)/r = -5 α_d (1 - q/2)³ / h² needs no division by r.
+  // the factor (dW/dr)/r = -5 α_d (1 - q/2)³ / h² needs no division by r; times gradient_scale.
   CASCADE_HD Real gradient_factor(Real r) const {
     const Real a = clamped(Real(1) - Real(0.5) * r * inv_h);
-    return Real(-5) * alpha_d * a * a * a * inv_h * inv_h;
+    return Real(-5) * gradient_scale * alpha_d * a * a * a * inv_h * inv_h;
   }
 
  private:
   CASCADE_HD static Real clamped(Real a) { return a > Real(0) ? a : Real(0); }
 };
+
+// The lattice moment m = tr(Σ_{j≠i} V_j x_ji ⊗ ∇_i W_ij) / d of the kernel without scale on the
+// square (2D) or cubic (3D) lattice of spacing dp, V_j = dp^d: the discrete form of ∫ ∇W ⊗ x' dV = I,
+// which the sums of SPH gradients and divergences take for 1. m is 0.974 in 2D and 0.979 in 3D at
+// h/dp = 1.3 (docs/physics.md, "Lattice moment"). The engine divides the kernel gradient by it, so
+// that every gradient and divergence of the particle sums is exact for a linear field on the
+// lattice the particles start on.
+template <int Dim>
+double lattice_gradient_moment(double h, double dp) {
+  const WendlandC2<double, Dim> w(h);
+  const int reach = int(std::ceil(2.0 * h / dp));
+  const double volume = std::pow(dp, Dim);
+  double sum = 0;
+  int n[3] = {0, 0, 0};
+  const int span[3] = {reach, Dim > 1 ? reach : 0, Dim > 2 ? reach : 0};
+  for (n[0] = -span[0]; n[0] <= span[0]; ++n[0])
+    for (n[1] = -span[1]; n[1] <= span[1]; ++n[1])
+      for (n[2] = -span[2]; n[2] <= span[2]; ++n[2]) {
+        const double r2 = dp * dp * double(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (r2 == 0 || r2 >= w.support2) continue;
+        sum -= volume * w.gradient_factor(std::sqrt(r2)) * r2;  // V_j x_ij·∇_i W_ij with ∇_i W_ij = F x_ij
+      }
+  return sum / Dim;
+}
 
 }  // namespace cascade

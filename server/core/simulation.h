@@ -87,7 +87,10 @@ class Simulation final : public Engine {
     set_up_soil(host);
 
     sph_.h = Real(config.h);
-    sph_.kernel = WendlandC2<Real, Dim>(Real(config.h));
+    // The kernel gradient normalised on the lattice the builder places the particles on
+    // (kernel.h, docs/physics.md "Lattice moment"): every gradient and divergence is then exact
+    // for a linear field in the bulk, as the renormalised pore-pressure gradient is.
+    sph_.kernel = WendlandC2<Real, Dim>(Real(config.h), Real(1.0 / lattice_gradient_moment<Dim>(config.h, config.dp)));
     sph_.eta2 = Real(0.01 * config.h * config.h);
     sph_.mass = Real(config.water_density * std::pow(config.dp, Dim));
     for (int a = 0; a < Dim; ++a) sph_.gravity[a] = Real(config.gravity[a]);

@@ -32,8 +32,8 @@ namespace cascade {
 // interface: over the soil alone the top layer's one-sided L_i doubles the gradient's response to
 // its own pressure, and the seepage then ran away there at K_sat = 1e-3 m/s (docs/physics.md,
 // "Soil-water interface"). The paper uses
-// the plain SPH gradient in Eq. 27b; on a lattice at h/dp = 1.3 it is 0.974 of the true gradient
-// (docs/physics.md), so still pore water would settle 2.7% above hydrostatic pressure. Each kind is
+// the plain SPH gradient in Eq. 27b, which the kernel's lattice normalisation (kernel.h) makes exact
+// in the bulk only: where the support is cut it misses up to half the gradient. Each kind is
 // launched over its own block of particles (cell_sort.h).
 template <typename Real, int Dim, bool PoreWater = false>
 struct RenormalisedDensityGradient {

@@ -1,5 +1,5 @@
 // Wendland C2 kernel (paper Eq. 20, ERRATA.md): normalisation, values and gradient against the
-// analytic expressions, in 1D, 2D and 3D.
+// analytic expressions, in 1D, 2D and 3D, and its gradient normalised on the particle lattice.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -98,6 +98,47 @@ TEST(WendlandC2, LatticeGradientMomentIsIdentity) {
   EXPECT_NEAR(m(0, 0), 1.0, 0.03);
   EXPECT_NEAR(m(1, 1), 1.0, 0.03);
   EXPECT_NEAR(m(0, 1), 0.0, 1e-12);
+}
+
+// The kernel gradient divided by the lattice moment m (lattice_gradient_moment) makes the plain SPH
+// gradient Σ_j V_j (f_j − f_i) ∇_i W_ij exact for a linear field f at a lattice point with a full
+// support, in every direction, at the smoothing lengths of the cases; m itself is the figure
+// docs/physics.md quotes ("Lattice moment").
+template <int Dim>
+void expect_exact_linear_gradient(double h_over_dp) {
+  const double dp = 0.02, h = h_over_dp * dp;
+  const double m = lattice_gradient_moment<Dim>(h, dp);
+  const WendlandC2<double, Dim> w(h, 1.0 / m);
+  Vec<double, Dim> slope;
+  for (int a = 0; a < Dim; ++a) slope[a] = 0.7 - 1.9 * a;  // f(x) = slope · x
+  Vec<double, Dim> gradient = Vec<double, Dim>::Zero();
+  const int reach = int(std::ceil(2 * h_over_dp));
+  int n[3] = {0, 0, 0}, count = 0;
+  for (n[0] = -reach; n[0] <= reach; ++n[0])
+    for (n[1] = Dim > 1 ? -reach : 0; n[1] <= (Dim > 1 ? reach : 0); ++n[1])
+      for (n[2] = Dim > 2 ? -reach : 0; n[2] <= (Dim > 2 ? reach : 0); ++n[2]) {
+        Vec<double, Dim> x_ji;
+        for (int a = 0; a < Dim; ++a) x_ji[a] = n[a] * dp;
+        const double r = x_ji.norm();
+        if (r == 0 || r >= 2 * h) continue;
+        gradient += std::pow(dp, Dim) * slope.dot(x_ji) * w.gradient_factor(r) * (-x_ji);
+        ++count;
+      }
+  EXPECT_GT(count, 0);
+  for (int a = 0; a < Dim; ++a)
+    EXPECT_NEAR(gradient[a], slope[a], 1e-12) << Dim << "D, h/dp = " << h_over_dp << ", component " << a;
+}
+
+TEST(WendlandC2, GradientNormalisedOnTheLatticeIsExactForLinearFields) {
+  for (double h_over_dp : {1.3, 1.5, 1.8}) {
+    expect_exact_linear_gradient<1>(h_over_dp);
+    expect_exact_linear_gradient<2>(h_over_dp);
+    expect_exact_linear_gradient<3>(h_over_dp);
+  }
+  EXPECT_NEAR(lattice_gradient_moment<2>(0.013, 0.01), 0.974, 5e-4);
+  EXPECT_NEAR(lattice_gradient_moment<3>(0.013, 0.01), 0.979, 5e-4);
+  EXPECT_NEAR(lattice_gradient_moment<2>(0.015, 0.01), 0.997, 5e-4);
+  EXPECT_NEAR(lattice_gradient_moment<3>(0.015, 0.01), 1.0006, 5e-5);
 }
 
 }  // namespace

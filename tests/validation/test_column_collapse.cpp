@@ -21,7 +21,7 @@
 // suction from 10 kPa to 700 kPa, and Bishop's stress (Eq. 7) gave the "dry" sand up to 600 Pa of
 // apparent confinement (its mean effective pressure is about 400 Pa). With the residual water
 // moving with the grains (docs/physics.md, "Grain-bound water") the suction stays at 10 kPa and the
-// run-outs are 1.05 and 2.31 with the switch (1.68 at a = 1 without it): a dry granular flow of
+// run-outs are 1.05 and 2.41 with the switch (1.68 at a = 1 without it, before the lattice normalisation): a dry granular flow of
 // this model runs out far past Lube's law. Measured at a = 1: 20-30% of the moving particles carry
 // no effective stress at all (at the Drucker-Prager apex, c = 0), so they flow without friction.
 // Why they lose their stress is not traced yet (issue 13).

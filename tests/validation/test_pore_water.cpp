@@ -82,7 +82,7 @@ TEST(PoreWater, HydrostaticSaturatedColumnStaysAtRest) {
   for (std::size_t i = 0; i < f.size(); ++i)
     if (f.phase[i] == std::uint8_t(Phase::soil)) q_max = std::max(q_max, std::fabs(q->values[3 * i + 2]));
   // 10⁻⁴ of the hydrostatic pressure at the base; the seepage 10⁻⁵ of K_sat. (The plain SPH
-  // gradient in Eq. 27b would leave 2.7% too steep a pressure, renormalised_gradient.h.)
+  // gradient in Eq. 27b would miss the gradient at the surface and the base, renormalised_gradient.h.)
   const std::string at_rest = "compressible hydrostatic p_w from the drained top, no flow (an exact equilibrium)";
   CASCADE_VALIDATE({.case_name = kColumn, .reference = at_rest,
                     .metric = "largest |p_w − hydrostatic| after 2000 steps (Pa)", .measured = max_abs(excess),

@@ -68,8 +68,9 @@ Statics statics(const FieldFrame& f) {
   return s;
 }
 
-TEST(SubmergedLayer, HydrostaticPorePressureAndBuoyantWeightWithoutDrift) {
-  testing::CaseRun run("submerged_layer_2d.yaml");
+// At the case's h/dp, 1.5, and at 1.3 with the same bounds (issue 13, item 2).
+void expect_statics_without_drift(const char* h_over_dp) {
+  testing::CaseRun run("submerged_layer_2d.yaml", {std::string("h_over_dp=") + h_over_dp});
   testing::WallWatch walls(run.spec);  // issue 13, item 1
   walls.sample(run.engine->frame());
   run.run_steps(5000);
@@ -78,7 +79,7 @@ TEST(SubmergedLayer, HydrostaticPorePressureAndBuoyantWeightWithoutDrift) {
   run.run_steps(5000);
   walls.sample(run.engine->frame());
   const Statics end = statics(run.engine->frame());
-  const std::string case_name = "Submerged soil layer 2D (cases/submerged_layer_2d.yaml)";
+  const std::string case_name = std::string("Submerged soil layer 2D (cases/submerged_layer_2d.yaml), h/dp = ") + h_over_dp;
   walls.validate(case_name, "at 0, 5000 and 10⁴ steps");
   const std::string pressure = "hydrostatic from the free water surface, ρ_w g (z_s − z) (Terzaghi 1943)";
   const std::string issue = "the issue's tolerance: 2% of the largest value, at the floor";
@@ -105,6 +106,9 @@ TEST(SubmergedLayer, HydrostaticPorePressureAndBuoyantWeightWithoutDrift) {
   }
   EXPECT_GE(run.engine->step_count(), 10000u);
 }
+
+TEST(SubmergedLayer, HydrostaticPorePressureAndBuoyantWeightWithoutDriftAtHOverDp1p3) { expect_statics_without_drift("1.3"); }
+TEST(SubmergedLayer, HydrostaticPorePressureAndBuoyantWeightWithoutDriftAtHOverDp1p5) { expect_statics_without_drift("1.5"); }
 
 }  // namespace
 }  // namespace cascade
