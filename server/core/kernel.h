@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <stdexcept>
 
 #include "server/core/types.h"
 
@@ -56,6 +57,8 @@ struct WendlandC2 {
 // lattice the particles start on.
 template <int Dim>
 double lattice_gradient_moment(double h, double dp) {
+  if (!(h > 0 && dp > 0 && h < 1e3 * dp))
+    throw std::invalid_argument("the smoothing length and the particle spacing must be positive, h/dp at most 1000");
   const WendlandC2<double, Dim> w(h);
   const int reach = int(std::ceil(2.0 * h / dp));
   const double volume = std::pow(dp, Dim);

@@ -718,7 +718,7 @@ TEST(SoilCases, ShippedSoilCasesLoad) {
     EXPECT_EQ(spec.dimensions(), 2);
     EXPECT_DOUBLE_EQ(spec.dp(), 0.02);
     EXPECT_DOUBLE_EQ(spec.h_over_dp(), 1.8);
-    // Half a day of rain: the base would saturate after about 0.6 day (cases/infiltration_1d.yaml).
+    // Rain to a quarter of a day, the last profile compared (cases/infiltration_1d.yaml says why).
     EXPECT_DOUBLE_EQ(spec.end_time(), std::string(name) == "infiltration_1d" ? 21600 : 86400);
     EXPECT_DOUBLE_EQ(spec.output().interval(), 8640);
     // The periodic width spans 3 kernel supports with the skin, 6.3 h, in whole spacings.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "server/core/kernel.h"
 
@@ -139,6 +140,9 @@ TEST(WendlandC2, GradientNormalisedOnTheLatticeIsExactForLinearFields) {
   EXPECT_NEAR(lattice_gradient_moment<3>(0.013, 0.01), 0.979, 5e-4);
   EXPECT_NEAR(lattice_gradient_moment<2>(0.015, 0.01), 0.997, 5e-4);
   EXPECT_NEAR(lattice_gradient_moment<3>(0.015, 0.01), 1.0006, 5e-5);
+  // An engine configured without a spacing gets an error, not a loop over 2h/0 lattice points.
+  EXPECT_THROW(lattice_gradient_moment<2>(0.013, 0.0), std::invalid_argument);
+  EXPECT_THROW(lattice_gradient_moment<3>(-0.013, 0.01), std::invalid_argument);
 }
 
 }  // namespace
