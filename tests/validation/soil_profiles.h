@@ -34,6 +34,22 @@ inline std::map<double, double> layer_pressures(const FieldFrame& f) {
   return out;
 }
 
+// The largest max − min of the soil's pore pressure within one layer (the layers of
+// layer_pressures): 0 in a laterally uniform column.
+inline double largest_layer_pressure_spread(const FieldFrame& f) {
+  std::map<double, std::pair<double, double>> bounds;  // z → (min, max)
+  const auto* p = f.find("pore_pressure");
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (f.phase[i] == std::uint8_t(Phase::soil)) {
+      const double v = p->values[i];
+      const auto [it, fresh] = bounds.try_emplace(std::round(f.position[3 * i + 2] * 1e6) / 1e6, v, v);
+      if (!fresh) it->second.first = std::min(it->second.first, v), it->second.second = std::max(it->second.second, v);
+    }
+  double spread = 0;
+  for (const auto& [z, b] : bounds) spread = worst_of(spread, b.second - b.first);
+  return spread;
+}
+
 // v(at) on the increasing grid z, held constant beyond its ends.
 inline double interpolate(const std::vector<double>& z, const std::vector<double>& v, double at) {
   if (at <= z.front()) return v.front();
