@@ -54,11 +54,14 @@ struct WendlandC2 {
 // which the sums of SPH gradients and divergences take for 1. m is 0.974 in 2D and 0.979 in 3D at
 // h/dp = 1.3 (docs/physics.md, "Lattice moment"). The engine divides the kernel gradient by it, so
 // that every gradient and divergence of the particle sums is exact for a linear field on the
-// lattice the particles start on.
+// lattice the particles start on. With η² > 0, each pair is weighted by r²/(r² + η²): the moment
+// of the pairwise Laplacian's weights (seepage_exchange.h), whose flux through a lattice plane per
+// unit potential gradient it is.
 template <int Dim>
-double lattice_gradient_moment(double h, double dp) {
-  if (!(h > 0 && dp > 0 && h < 1e3 * dp))
-    throw std::invalid_argument("the smoothing length and the particle spacing must be positive, h/dp at most 1000");
+double lattice_gradient_moment(double h, double dp, double eta2 = 0) {
+  if (!(h > 0 && dp > 0 && h < 1e3 * dp && eta2 >= 0))
+    throw std::invalid_argument(
+        "the smoothing length and the particle spacing must be positive, h/dp at most 1000, η² not negative");
   const WendlandC2<double, Dim> w(h);
   const int reach = int(std::ceil(2.0 * h / dp));
   const double volume = std::pow(dp, Dim);
@@ -70,7 +73,8 @@ double lattice_gradient_moment(double h, double dp) {
       for (n[2] = -span[2]; n[2] <= span[2]; ++n[2]) {
         const double r2 = dp * dp * double(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         if (r2 == 0 || r2 >= w.support2) continue;
-        sum -= volume * w.gradient_factor(std::sqrt(r2)) * r2;  // V_j x_ij·∇_i W_ij with ∇_i W_ij = F x_ij
+        // V_j x_ij·∇_i W_ij with ∇_i W_ij = F x_ij, times r²/(r² + η²)
+        sum -= volume * w.gradient_factor(std::sqrt(r2)) * r2 * r2 / (r2 + eta2);
       }
   return sum / Dim;
 }

@@ -30,6 +30,8 @@ struct SphConstants {
   WendlandC2<Real, Dim> kernel;
   Real h;
   Real eta2;                           // η² = (0.1 h)² (Eq. 24b-c)
+  Real laplacian_scale;                // m/m_η of the lattice: the pairwise Laplacian exact there (seepage_exchange.h)
+  Real dp;                             // the initial particle spacing
   Real mass;                           // m = ρ_w0 dp^Dim, the same for every particle (Section 3.2)
   Vec<Real, Dim> gravity;
 };

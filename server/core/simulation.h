@@ -92,6 +92,9 @@ class Simulation final : public Engine {
     // for a linear field in the bulk, as the renormalised pore-pressure gradient is.
     sph_.kernel = WendlandC2<Real, Dim>(Real(config.h), Real(1.0 / lattice_gradient_moment<Dim>(config.h, config.dp)));
     sph_.eta2 = Real(0.01 * config.h * config.h);
+    sph_.laplacian_scale = Real(lattice_gradient_moment<Dim>(config.h, config.dp) /
+                                lattice_gradient_moment<Dim>(config.h, config.dp, 0.01 * config.h * config.h));
+    sph_.dp = Real(config.dp);
     sph_.mass = Real(config.water_density * std::pow(config.dp, Dim));
     for (int a = 0; a < Dim; ++a) sph_.gravity[a] = Real(config.gravity[a]);
     water_ = WaterConstants<Real>{Real(config.water_density), Real(config.sound_speed), Real(config.delta),
@@ -216,7 +219,7 @@ class Simulation final : public Engine {
     add(step_limit_), add(start_density_), add(start_water_density_);
     add(phase_), add(scratch_phase_), add(ghost_wet_), add(id_), add(scratch_index_);
     add(soil_materials_), add(soil_material_), add(free_surface_), add(surface_state_);
-    add(porosity_), add(saturation_), add(seepage_), add(skeleton_acceleration_);
+    add(porosity_), add(saturation_), add(conductivity_), add(seepage_), add(skeleton_acceleration_);
     add(effective_stress_), add(start_stress_);
     add(dummy_pore_pressure_), add(dummy_stress_), add(dummy_velocity_), add(wall_), add(wall_pore_pressure_);
     add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
@@ -471,9 +474,9 @@ class Simulation final : public Engine {
 
   // Right-hand sides at the current state: boundary values and states first (Eqs. 30-35, 38,
   // 39), then pressures and renormalised density gradients (Eqs. 6, 25), the seepage discharge
-  // (Eq. 27b) and its wall values (Eq. 35b), then the interactions (Eqs. 22-24, 27a, 40) and the
-  // soil's local damping (local_damping.h). While relaxing, the pore water is held: no pore-water
-  // gradient or seepage pass, and a zero pore-water density rate.
+  // (Eq. 27b), then the interactions (Eqs. 22-24, 27a, 40) and the soil's local damping
+  // (local_damping.h). While relaxing, the pore water is held: no pore-water gradient or seepage
+  // pass, and a zero pore-water density rate.
   void evaluate_rates(bool half_step) {
     boundary_values(half_step);
     density_gradients();
@@ -483,7 +486,8 @@ class Simulation final : public Engine {
                                        has_soil_ ? raw(saturation_) : nullptr},
            0, water);
     if (!has_soil_) return;
-    launch(SoilInteraction<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_, water_.rho0, relaxing()},
+    launch(SoilInteraction<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_, surface_forcing(),
+                                      water_.rho0, relaxing()},
            water, moving_);
     launch(LocalDamping<Real, Dim>{view(), raw(unbalanced_acceleration_), Real(local_damping_)}, water, moving_);
   }
@@ -502,10 +506,9 @@ class Simulation final : public Engine {
     launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
   }
 
-  // The seepage discharge (Eq. 27b) and its wall values (Eqs. 35b, 37).
+  // The seepage discharge (Eq. 27b), for the frames and the surface states (pore_water_state.h).
   void seepage_discharge() {
     launch(SeepageDischarge<Real, Dim>{view(), soil_view(), sph_, surface_forcing()}, grid_.water_end, moving_);
-    launch(SolidBoundarySeepage<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
   }
 
   // Water pressure (Eq. 6) and the renormalised gradients of the water and pore-water densities
@@ -524,7 +527,8 @@ class Simulation final : public Engine {
   }
 
   SoilView<Real, Dim> soil_view() {
-    return {raw(soil_materials_), raw(soil_material_), raw(porosity_), raw(saturation_), raw(seepage_),
+    return {raw(soil_materials_), raw(soil_material_), raw(porosity_), raw(saturation_), raw(conductivity_),
+            raw(seepage_),
             raw(dummy_pore_pressure_), raw(dummy_stress_), raw(dummy_velocity_),
             raw(free_surface_), raw(surface_state_), raw(effective_stress_), raw(velocity_gradient_),
             raw(porosity_rate_), raw(plastic_strain_), raw(skeleton_acceleration_), raw(wall_),
@@ -593,6 +597,7 @@ class Simulation final : public Engine {
     start_plastic_strain_.assign(n, Real(0));
     start_porosity_.assign(n, Real(0));
     saturation_.assign(n, Real(0));
+    conductivity_.assign(n, Real(0));
     seepage_.assign(n, V::Zero());
     skeleton_acceleration_.assign(n, V::Zero());  // at rest
     unbalanced_acceleration_.assign(n, Real(0));
@@ -679,7 +684,7 @@ class Simulation final : public Engine {
   bool has_soil_ = false;
   Vector<SoilMaterial> soil_materials_;
   Vector<std::uint8_t> soil_material_, free_surface_, surface_state_, wall_;
-  Vector<Real> porosity_, saturation_, dummy_pore_pressure_, wall_pore_pressure_;
+  Vector<Real> porosity_, saturation_, conductivity_, dummy_pore_pressure_, wall_pore_pressure_;
   Vector<V> seepage_, skeleton_acceleration_, dummy_velocity_;
   Vector<Voigt<Real>> effective_stress_, start_stress_, dummy_stress_;
   Vector<Mat<Real, Dim>> velocity_gradient_;

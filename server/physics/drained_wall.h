@@ -7,8 +7,8 @@
 //    of a dummy stores p_w, not ρ_w (solid_boundary_soil.h); through the linear state of Eq. 6,
 //    p_w = K_w/ρ_w0 (ρ_w − ρ_w0), Eq. 36a reads p_w,b = 2 p_w,pres − p_w,g for every K_w, which is
 //    what is computed.
-//  - Eq. 37: q_w,b = q_w,g, the Shepard interpolation at the ghost node (Eq. 34b) not reversed:
-//    water passes through the wall.
+//  - Eq. 37 (q_w,b = q_w,g) is not needed: the dummy joins the soil's pairwise Darcy exchange with
+//    this pressure (seepage_exchange.h), and water passes through the wall.
 #pragma once
 
 #include "server/core/types.h"
@@ -19,12 +19,6 @@ namespace cascade {
 template <typename Real>
 CASCADE_HD inline Real drained_wall_pore_pressure(Real prescribed_pressure, Real ghost_pressure) {
   return Real(2) * prescribed_pressure - ghost_pressure;
-}
-
-// Eq. 37 against Eq. 35b: the seepage discharge the dummy shows, from the ghost node's q_w,g.
-template <typename Vector>
-CASCADE_HD inline Vector wall_seepage(const Vector& ghost_seepage, bool drained) {
-  return drained ? ghost_seepage : Vector(-ghost_seepage);
 }
 
 }  // namespace cascade

@@ -6,10 +6,10 @@
 // S_max S_e is the printed S_w less the residual water held by the grains, which the skeleton's
 // volume change does not squeeze (grain_bound_water.h); the two agree in a saturated soil.
 // The δ-term carries the opposite sign to the printed Eq. 27a, whose form inside −1/C_r [...]
-// would be anti-diffusive (ERRATA.md): with it, a local pore-pressure bump decays. Neighbours of
-// the divergence are the soil and the dummy particles (whose q_w = −q_g closes the wall,
-// Eq. 35b); free water does not exchange mass with the pore water (ERRATA.md). ⟨∇·q_w⟩_i is the
-// renormalised form of Σ_j V_j (q_w,j − q_w,i)·∇_i W_ij (soil_interaction.h).
+// would be anti-diffusive (ERRATA.md): with it, a local pore-pressure bump decays. ⟨∇·q_w⟩_i is
+// the sum of pairwise Darcy exchanges with the soil and a drained wall's dummies, with the rain of
+// Eq. 39 as a source at the surface (seepage_exchange.h); free water does not exchange mass with
+// the pore water (ERRATA.md).
 //   Δt_sp = (γ_w/K_w) h² C_r / (2 K) (Eq. 40c with c_v = C_r, Eq. 41), γ_w = ρ_w0 g.
 #pragma once
 

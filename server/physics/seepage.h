@@ -26,16 +26,17 @@ struct SeepageDischarge {
   SurfaceForcing<Real, Dim> forcing;
 
   CASCADE_HD void operator()(std::uint32_t i) const {
+    const SoilMaterial& m = soil.materials[soil.material[i]];
+    const Real conductivity =
+        Real(m.saturated_conductivity * m.hydraulic.relative_conductivity(-double(p.pressure[i])));
+    soil.conductivity[i] = conductivity;  // for the pair exchanges of the continuity (seepage_exchange.h)
     if (soil.free_surface[i] && soil.surface_state[i] == std::uint8_t(SurfaceState::flux)) {
       Vec<Real, Dim> q = Vec<Real, Dim>::Zero();
       q[Dim - 1] = -forcing.intensity_at(p.position[i]);
       soil.seepage[i] = q;
       return;
     }
-    const SoilMaterial& m = soil.materials[soil.material[i]];
-    const double p_c = -double(p.pressure[i]);
     const Real g = sph.gravity.norm();
-    const Real conductivity = Real(m.saturated_conductivity * m.hydraulic.relative_conductivity(p_c));
     const Vec<Real, Dim> pressure_gradient = soil.seepage[i];  // left there by the gradient pass
     soil.seepage[i] =
         conductivity / g * (-pressure_gradient / p.water_density[i] + sph.gravity - soil.skeleton_acceleration[i]);

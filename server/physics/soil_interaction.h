@@ -19,10 +19,10 @@
 // compression only (interface_contact_pressure, water_momentum.h), and the water's volume change
 // enters the pore water in proportion to S_w,i, the wetted fraction of the pores. A rigid
 // skeleton (Section 4.1) keeps v = 0, its stress and porosity: only the pore water flows. The
-// seepage divergence of Eq. 27a is renormalised (below); the paper's standard operator misses the
-// surface flux by half. In the geostatic stage (local_damping.h) the pore water is held: its
-// density rate is zero, and the seepage limit of Eq. 40c, for a diffusion not integrated then,
-// does not bound the step.
+// seepage divergence of Eq. 27a is a sum of pairwise Darcy exchanges, with the rain of Eq. 39 a
+// source on the particle that tops its column (seepage_exchange.h). In the geostatic stage
+// (local_damping.h) the pore water is held: its density rate is zero, and the seepage limit of
+// Eq. 40c, for a diffusion not integrated then, does not bound the step.
 #pragma once
 
 #include <cmath>
@@ -35,6 +35,8 @@
 #include "server/core/small_matrix.h"
 #include "server/physics/numerical_density.h"
 #include "server/physics/pore_water_continuity.h"
+#include "server/physics/pore_water_state.h"
+#include "server/physics/seepage_exchange.h"
 #include "server/physics/soil_damping.h"
 #include "server/physics/soil_momentum.h"
 #include "server/physics/soil_view.h"
@@ -52,6 +54,7 @@ struct SoilInteraction {
   GridView<Real, Dim> grid;
   NeighbourListView<Real, Dim> neighbours;
   SphConstants<Real, Dim> sph;
+  SurfaceForcing<Real, Dim> forcing;
   Real rho0;
   bool hold_pore_water;  // the geostatic stage: dρ_w/dt = 0
 
@@ -62,7 +65,6 @@ struct SoilInteraction {
     const bool rigid = m.rigid;
     const V x_i = p.position[i];
     const V v_i = p.velocity[i];
-    const V q_i = soil.seepage[i];
     const Real rho_i = p.density[i];
     const Real rho_w_i = p.water_density[i];
     const V grad_rho_i = p.water_density_gradient[i];
@@ -73,8 +75,13 @@ struct SoilInteraction {
     const std::uint32_t water_end = grid.water_end, moving_end = grid.moving_end;
 
     Real divergence = 0;          // Σ V_j (v_i − v_j)·∇_i W_ij, every neighbour (Eq. 22)
-    M seepage_gradient = M::Zero();  // Σ V_j (q_j − q_i) ⊗ ∇_i W_ij, soil and dummies (Eq. 27a)
-    M moment = M::Zero();            // Σ V_j x_ji ⊗ ∇_i W_ij over the same neighbours
+    Real seepage_sum = 0;         // Σ_j of ⟨∇·q_w⟩_i, soil and drained-wall dummies (seepage_exchange.h)
+    bool covered = false;         // a particle above i in its lattice column (seepage_exchange.h)
+    V first_moment = V::Zero();   // Σ_j w_ij x_ij of the pair weights, not 0 where the support is cut
+    bool near_prescribed = false;  // a soil neighbour holds a prescribed p_w (Eq. 39)
+    const Real conductivity_i = soil.conductivity[i];
+    const Real inv_g = Real(1) / sph.gravity.norm();
+    const V driving_i = sph.gravity - soil.skeleton_acceleration[i];  // g − a_s of Eq. 27b
     Real diffusion = 0;           // Σ V_j ψ_ij·∇_i W_ij, soil (Eq. 27a)
     V force = V::Zero();          // Σ V_j (σ_i + σ_j)·∇_i W_ij (Eq. 26b)
     V viscous = V::Zero();
@@ -94,7 +101,14 @@ struct SoilInteraction {
       const V v_j = dummy ? soil.dummy_velocity[j - moving_end] : p.velocity[j];
       const V v_ij = v_i - v_j;
       divergence += velocity_divergence_pair(volume_j, v_ij, grad_w);
+      covered = covered || covers_from_rain<Real, Dim>(x_ij, sph.dp);
+      const Real inv_r2_eta2 = Real(1) / (r2 + sph.eta2);
+      // The pair weight of the Darcy exchange with the conductivity K_i on both sides: for the
+      // moment of the sides without flux (free water, an impermeable wall) and a drained wall.
+      const Real own_weight = seepage_exchange_pair<Real, Dim>(volume_j, Real(2) * conductivity_i * inv_g, Real(1),
+                                                               x_ij, inv_r2_eta2, grad_w);
       if (water) {
+        first_moment += own_weight * x_ij;  // no mass exchange with free water: a side that is there
         const Real contact_pressure = interface_contact_pressure(pore_stress_i + p.pressure[j]);
         force += stress_force_pair<Real, Dim>(volume_j, -contact_pressure * M::Identity(), grad_w);
         interface_divergence -= volume_j * v_ij.dot(grad_w);
@@ -104,24 +118,44 @@ struct SoilInteraction {
                                          : total_stress(soil.effective_stress[j], soil.saturation[j], p.pressure[j]);
       const M stress_sum = stress_i + in_plane<Real, Dim>(stress_j);
       force += stress_force_pair<Real, Dim>(volume_j, stress_sum, grad_w);
-      const Real inv_r2_eta2 = Real(1) / (r2 + sph.eta2);
       const Real mu = viscosity_mu(sph.h, v_ij, x_ij, inv_r2_eta2);
       max_mu = std::fmax(max_mu, std::fabs(mu));
       viscous += artificial_viscosity_pair(alpha_c0, sph.mass, rho_i, p.density[j], mu, grad_w);
       gradient -= volume_j * v_ij * grad_w.transpose();
-      seepage_gradient += volume_j * (soil.seepage[j] - q_i) * grad_w.transpose();
-      moment -= volume_j * x_ij * grad_w.transpose();
-      if (!dummy)
+      if (!dummy) {
         diffusion += density_diffusion_pair(volume_j, rho_w_i, p.water_density[j], x_ij, inv_r2_eta2, grad_rho_i,
                                             p.water_density_gradient[j], grad_w);
+        const V driving = driving_i + Real(0.5) * (soil.skeleton_acceleration[i] - soil.skeleton_acceleration[j]);
+        const Real potential = seepage_potential_difference<Real, Dim>(
+            p.pressure[i], p.pressure[j], Real(0.5) * (rho_w_i + p.water_density[j]), driving, x_ij);
+        const Real weight = seepage_exchange_pair<Real, Dim>(volume_j, (conductivity_i + soil.conductivity[j]) * inv_g,
+                                                             Real(1), x_ij, inv_r2_eta2, grad_w);
+        seepage_sum += weight * potential;
+        first_moment += weight * x_ij;
+        near_prescribed =
+            near_prescribed || (soil.free_surface[j] && soil.surface_state[j] != std::uint8_t(SurfaceState::flux));
+      } else if (soil.wall[j] != 0) {  // a drained wall (Eq. 36)
+        const Real p_w_b = soil.dummy_pore_pressure[j - moving_end];
+        const Real potential = seepage_potential_difference<Real, Dim>(
+            p.pressure[i], p_w_b, Real(0.5) * (rho_w_i + pore_density_of(m, rho0, p_w_b)), driving_i, x_ij);
+        seepage_sum += own_weight * potential;
+        first_moment += own_weight * x_ij;
+      } else {
+        first_moment += own_weight * x_ij;  // an impermeable wall: a side that is there, without flux
+      }
     }
 
-    // ∇·q_w = tr(G M⁻¹): exact for a linear q_w also where the kernel support is cut, at the free
-    // surface, where the prescribed flux enters (Eq. 39) and the plain sum tr G would take about
-    // half of it. Where M is singular the plain sum is kept.
-    const Real det = determinant(moment);
-    const Real seepage_divergence =
-        std::fabs(det) > Real(1e-3) ? (seepage_gradient * inverse(moment, det)).trace() : seepage_gradient.trace();
+    // ⟨∇·q_w⟩_i with the rain of Eq. 39 on the particle that tops its column, and beside a
+    // prescribed pressure the flux of the pairs its cut support lacks (seepage_exchange.h).
+    const bool flux_surface = soil.free_surface[i] && soil.surface_state[i] == std::uint8_t(SurfaceState::flux);
+    if (near_prescribed && !flux_surface && conductivity_i > Real(0))
+      seepage_sum -= first_moment.dot(soil.seepage[i]) / (-conductivity_i * inv_g);  // ∇Φ_i = −g q_i/K_i
+    Real seepage_divergence = -sph.laplacian_scale * seepage_sum;
+    if (flux_surface && !covered) {
+      Real column_area = 1;
+      for (int a = 0; a + 1 < Dim; ++a) column_area *= sph.dp;
+      seepage_divergence -= forcing.intensity_at(x_i) * column_area * rho_i / sph.mass;
+    }
     const Real porosity = soil.porosity[i];
     const Real saturation = soil.saturation[i];
     const Real volumetric = rigid ? Real(0) : gradient.trace();  // ε̇_v of the skeleton
@@ -139,10 +173,9 @@ struct SoilInteraction {
         pore_water_density_rate(rho_w_i, capacity, seepage_divergence, skeleton_share, pore_volumetric,
                                 Real(m.delta) * sph.h * Real(m.pore_sound_speed), diffusion);
     p.water_density_rate[i] = prescribed || hold_pore_water ? Real(0) : pore_rate;
-    const Real conductivity = Real(m.saturated_conductivity * m.hydraulic.relative_conductivity(p_c));
     const Real dt_sp = hold_pore_water ? std::numeric_limits<Real>::max()
                                        : seepage_time_step(rho0 * sph.gravity.norm(), Real(m.water_bulk_modulus),
-                                                           sph.h, capacity, conductivity);
+                                                           sph.h, capacity, conductivity_i);
     bool finite = std::isfinite(pore_rate) && !std::isnan(dt_sp);
     if (rigid) {
       p.density_rate[i] = 0;

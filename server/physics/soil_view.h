@@ -26,7 +26,8 @@ struct SoilView {
   const std::uint8_t* material;        // per particle: index into materials
   Real* porosity;                      // φ (Eq. 26a)
   Real* saturation;                    // S_w(p_c) (Eqs. 14, 42, 43)
-  Vec<Real, Dim>* seepage;             // q_w (Eq. 27b); for a dummy, −q_g (Eq. 35b); between the
+  Real* conductivity;                  // K = K_sat K_rel(p_c) (Eqs. 15, 42b, 43b), by the seepage pass
+  Vec<Real, Dim>* seepage;             // q_w (Eq. 27b), per soil particle; between the
                                        // gradient and seepage passes, ⟨∇p_w⟩^L (Eq. 25)
   // The dummies' soil side, indexed by b − GridView::moving_end (the dummy block's own index):
   Real* dummy_pore_pressure;           // p_w of the pore water (Eq. 32b)

@@ -12,9 +12,9 @@
 //    (Eq. 36, drained_wall.h).
 //  - v: Shepard interpolation of the soil velocity at the ghost node, reversed at the dummy
 //    (Eqs. 34a, 35a): no slip, no penetration, for both kinds of wall.
-//  - q_w: Shepard interpolation at the ghost node (Eq. 34b), reversed at the dummy of an
-//    impermeable wall (Eq. 35b), so that the seepage through it vanishes, and kept at the dummy of
-//    a drained wall (Eq. 37), so that it passes.
+//  - q_w (Eqs. 34b, 35b, 37) is not formed: the seepage divergence is a sum of pair exchanges
+//    (seepage_exchange.h), which an impermeable wall's dummies do not join (no flux through it)
+//    and a drained wall's join with the pore pressure above, so that water passes.
 #pragma once
 
 #include <cmath>
@@ -61,29 +61,6 @@ struct SolidBoundarySoil {
     soil.dummy_pore_pressure[k] = wall ? drained_wall_pore_pressure(prescribed, ghost.at_ghost()(0)) : values(0);
     soil.dummy_stress[k] = values.template tail<6>();
     soil.dummy_velocity[k] = -ghost.ghost_velocity();
-  }
-};
-
-template <typename Real, int Dim>
-struct SolidBoundarySeepage {
-  ParticleView<Real, Dim> p;
-  SoilView<Real, Dim> soil;
-  GridView<Real, Dim> grid;
-  SphConstants<Real, Dim> sph;
-
-  CASCADE_HD void operator()(std::uint32_t b) const {
-    const Vec<Real, Dim> x_g = p.ghost[b];
-    Real shepard = 0;
-    Vec<Real, Dim> q = Vec<Real, Dim>::Zero();
-    using Grid = GridView<Real, Dim>;
-    grid.template for_each_neighbour_in<Grid::kSoilBlock, Grid::kSoilBlock + 1>(
-        x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>&, Real r2) {
-          const Real weight = sph.kernel.value(std::sqrt(r2)) * sph.mass / p.density[j];
-          shepard += weight;
-          q += weight * soil.seepage[j];
-        });
-    soil.seepage[b] = shepard > Real(0) ? wall_seepage(Vec<Real, Dim>(q / shepard), soil.wall[b] != 0)
-                                        : Vec<Real, Dim>::Zero();
   }
 };
 

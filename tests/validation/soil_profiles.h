@@ -101,7 +101,7 @@ inline double conserved_pore_water_volume(const SoilMaterial& soil, double poros
 inline double pore_water_volume(const FieldFrame& f, const SoilMaterial& soil, double particle_mass) {
   const auto* p = f.find("pore_pressure");
   const auto* porosity = f.find("porosity");
-  const auto* density = f.find("density");
+  const auto* density = f.find("numerical_density");
   double sum = 0;
   for (std::size_t i = 0; i < f.size(); ++i)
     if (f.phase[i] == std::uint8_t(Phase::soil))

@@ -122,13 +122,8 @@ TEST(Infiltration1D, PorePressureAgainstRichards) {
 
 TEST(Evaporation1D, PorePressureAgainstRichards) { compare("1D evaporation", "evaporation_1d.yaml", -2.3148e-8, -1e5); }
 
-// Known failures (docs/physics.md, "Pore-water balance"): the prescribed flux enters through the
-// renormalised divergence of the surface particle, a one-sided fit that is not a conservative
-// flux; the balance is off while the profile under the surface is curved.
-TEST(Infiltration1D, PoreWaterBalanceKnownFailure) {
-  water_balance("1D infiltration", "infiltration_1d.yaml", 1.1574e-6);
-}
-TEST(Evaporation1D, PoreWaterBalanceKnownFailure) { water_balance("1D evaporation", "evaporation_1d.yaml", -2.3148e-8); }
+TEST(Infiltration1D, PoreWaterBalance) { water_balance("1D infiltration", "infiltration_1d.yaml", 1.1574e-6); }
+TEST(Evaporation1D, PoreWaterBalance) { water_balance("1D evaporation", "evaporation_1d.yaml", -2.3148e-8); }
 
 }  // namespace
 }  // namespace cascade

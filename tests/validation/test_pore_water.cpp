@@ -71,26 +71,41 @@ double max_abs(const std::vector<double>& v) {
   return m;
 }
 
-TEST(PoreWater, HydrostaticSaturatedColumnStaysAtRest) {
+// The column of saturated_column(0) after 2000 steps.
+FieldFrame column_at_rest() {
   const auto c = saturated_column(0.0);
   auto engine = make_engine(c.config(), c.particles());
   for (int k = 0; k < 2000; ++k) engine->step();
-  const FieldFrame f = engine->frame();
-  const auto excess = excess_pressure(f);
+  return engine->frame();
+}
+const std::string kAtRest = "compressible hydrostatic p_w from the drained top, no flow (an exact equilibrium)";
+
+TEST(PoreWater, HydrostaticSaturatedColumnStaysAtRest) {
+  const FieldFrame f = column_at_rest();
+  // 10⁻⁴ of the hydrostatic pressure at the base.
+  CASCADE_VALIDATE({.case_name = kColumn, .reference = kAtRest,
+                    .metric = "largest |p_w − hydrostatic| after 2000 steps (Pa)", .measured = max_abs(excess_pressure(f)),
+                    .reference_value = 1e-4 * kRho * kG * kHeight, .bound = testing::Bound::at_most,
+                    .tolerance_source = "10⁻⁴ of ρ_w g H, " + kUnstated});
+}
+
+// Known failure: the frames' seepage field (Eq. 27b, the renormalised gradient of p_w) within 10⁻⁵
+// of K_sat in the same column. The bottom layer shows −3.0e-11 m/s (3e-5 K_sat): the impermeable
+// wall's dummies carry p_w extrapolated from their ghost nodes to first order (Eq. 32b), which
+// misses the compressible profile's curvature (ρ_w g²/K_w ρ_w0 ≈ 48 Pa/m²) over their depth. The
+// transport does not see it (the pair exchanges leave an impermeable wall's dummies out, and the
+// pressure stays within 0.0015 Pa of hydrostatic); before the pair exchanges the composite
+// divergence bent p_w until this gradient vanished (docs/physics.md, "Soil and pore water", item 7).
+TEST(PoreWater, HydrostaticSaturatedColumnSeepageFieldKnownFailure) {
+  const FieldFrame f = column_at_rest();
   const auto* q = f.find("seepage");
   double q_max = 0;
   for (std::size_t i = 0; i < f.size(); ++i)
     if (f.phase[i] == std::uint8_t(Phase::soil)) q_max = std::max(q_max, std::fabs(q->values[3 * i + 2]));
-  // 10⁻⁴ of the hydrostatic pressure at the base; the seepage 10⁻⁵ of K_sat. (The plain SPH
-  // gradient in Eq. 27b would miss the gradient at the surface and the base, renormalised_gradient.h.)
-  const std::string at_rest = "compressible hydrostatic p_w from the drained top, no flow (an exact equilibrium)";
-  CASCADE_VALIDATE({.case_name = kColumn, .reference = at_rest,
-                    .metric = "largest |p_w − hydrostatic| after 2000 steps (Pa)", .measured = max_abs(excess),
-                    .reference_value = 1e-4 * kRho * kG * kHeight, .bound = testing::Bound::at_most,
-                    .tolerance_source = "10⁻⁴ of ρ_w g H, " + kUnstated});
-  CASCADE_VALIDATE({.case_name = kColumn, .reference = at_rest, .metric = "largest |q_z| after 2000 steps (m/s)",
-                    .measured = q_max, .reference_value = 1e-5 * c.soil.saturated_conductivity,
-                    .bound = testing::Bound::at_most, .tolerance_source = "10⁻⁵ of K_sat, " + kUnstated});
+  const double k_sat = saturated_column(0.0).soil.saturated_conductivity;
+  CASCADE_VALIDATE({.case_name = kColumn, .reference = kAtRest, .metric = "largest |q_z| after 2000 steps (m/s)",
+                    .measured = q_max, .reference_value = 1e-5 * k_sat, .bound = testing::Bound::at_most,
+                    .tolerance_source = "10⁻⁵ of K_sat, " + kUnstated});
 }
 
 TEST(PoreWater, LocalBumpDecaysMonotonically) {
