@@ -103,12 +103,14 @@ struct SoilInteraction {
       divergence += velocity_divergence_pair(volume_j, v_ij, grad_w);
       covered = covered || covers_from_rain<Real, Dim>(x_ij, sph.dp);
       const Real inv_r2_eta2 = Real(1) / (r2 + sph.eta2);
-      // The pair weight of the Darcy exchange with the conductivity K_i on both sides: for the
-      // moment of the sides without flux (free water, an impermeable wall) and a drained wall.
-      const Real own_weight = seepage_exchange_pair<Real, Dim>(volume_j, Real(2) * conductivity_i * inv_g, Real(1),
-                                                               x_ij, inv_r2_eta2, grad_w);
+      // The pair weight of the Darcy exchange with K_i on both sides, for a drained wall and for the
+      // moment of the sides without flux (free water, an impermeable wall).
+      const auto own_weight = [&] {
+        return seepage_exchange_pair<Real, Dim>(volume_j, Real(2) * conductivity_i * inv_g, Real(1), x_ij,
+                                                inv_r2_eta2, grad_w);
+      };
       if (water) {
-        first_moment += own_weight * x_ij;  // no mass exchange with free water: a side that is there
+        first_moment += own_weight() * x_ij;  // no mass exchange with free water: a side that is there
         const Real contact_pressure = interface_contact_pressure(pore_stress_i + p.pressure[j]);
         force += stress_force_pair<Real, Dim>(volume_j, -contact_pressure * M::Identity(), grad_w);
         interface_divergence -= volume_j * v_ij.dot(grad_w);
@@ -138,10 +140,11 @@ struct SoilInteraction {
         const Real p_w_b = soil.dummy_pore_pressure[j - moving_end];
         const Real potential = seepage_potential_difference<Real, Dim>(
             p.pressure[i], p_w_b, Real(0.5) * (rho_w_i + pore_density_of(m, rho0, p_w_b)), driving_i, x_ij);
-        seepage_sum += own_weight * potential;
-        first_moment += own_weight * x_ij;
+        const Real weight = own_weight();
+        seepage_sum += weight * potential;
+        first_moment += weight * x_ij;
       } else {
-        first_moment += own_weight * x_ij;  // an impermeable wall: a side that is there, without flux
+        first_moment += own_weight() * x_ij;  // an impermeable wall: a side that is there, without flux
       }
     }
 

@@ -10,6 +10,7 @@
 
 #include "server/core/kernel.h"
 #include "server/core/types.h"
+#include "server/physics/seepage_exchange.h"
 
 namespace cascade {
 
@@ -116,9 +117,11 @@ class NetworkBuilder {
   // The elevation of a position, or the rise along a displacement (linear in it).
   double elevation(const V& x) const { return -g_.dot(x) / g_.norm(); }
 
-  // G_ij of the header (pore_water_network.h).
+  // G_ij of the header (pore_water_network.h): V_i times the explicit stage's pair term at
+  // (K_i + K_j)/g = 2 and a unit potential difference (seepage_exchange.h), of the other sign.
   double pair_weight(double volume_i, double volume_j, const V& x_ij, double r2) const {
-    return -2.0 * volume_i * volume_j * kernel_.gradient_factor(std::sqrt(r2)) * r2 / (r2 + eta2_);
+    const V grad_w = kernel_.gradient_factor(std::sqrt(r2)) * x_ij;
+    return -volume_i * seepage_exchange_pair<double, Dim>(volume_j, 2.0, 1.0, x_ij, 1.0 / (r2 + eta2_), grad_w);
   }
 
   // m = tr(Σ_j V_j (−x_ij·∇W_ij/(r² + η²)) x_ij ⊗ x_ij) / d over all neighbours of a particle,

@@ -43,11 +43,11 @@ TEST(PorePressureNoise, InfiltrationColumn) {
 // longer), to 0.3 day (on to the case's end at 0.5 day the base nears saturation, the step falls
 // towards Eq. 40c's 0.02 s of saturated soil, and the run took 500 s). A periodic column is
 // laterally uniform, so the largest spread of p_w within one particle layer is the measure,
-// exactly 0 in the analytic solution. With
-// the divergence of the renormalised gradient (before 2026-12-06) an odd-even mode in the second
-// layer below the flux-condition surface grew from the seed some 300 times every 0.05 day (2e-6 Pa
-// at 0.05 day, 1e4 Pa at 0.25 day, the run breaking down past 0.4 day); the pairwise Darcy
-// exchange damps every mode (docs/physics.md, "Smoothness of the pore pressure").
+// exactly 0 in the analytic solution. With the divergence of the renormalised gradient (before
+// 2026-12-06) an odd-even mode in the second layer below the flux-condition surface grew from the
+// seed some 300 times every 0.05 day (2e-6 Pa at 0.05 day, 1e4 Pa at 0.25 day, the run breaking
+// down past 0.4 day); the pairwise Darcy exchange damps every mode (docs/physics.md, "Smoothness of
+// the pore pressure").
 TEST(PorePressureNoise, InfiltrationColumnSeeded) {
   testing::CaseRun run("infiltration_1d.yaml", {"domain.max=[0.2400000001,3.1]"});
   run.run_until(0.3 * 86400.0);
