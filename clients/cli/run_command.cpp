@@ -388,6 +388,10 @@ int run_command(const std::vector<std::string>& args) {
     summary.sim_time = engine->time();
     summary.steps = engine->step_count();
     summary.lost_particles = engine->lost_particles();
+    if (summary.particles.soil > 0) {
+      const PoreWaterAccount account = engine->pore_water_account();
+      summary.pore_water = {true, account.rain, account.walls, account.surface};
+    }
     summary.bytes_per_particle = double(engine->device_bytes()) / double(std::max<std::size_t>(1, particles.size()));
     summary.particle_steps_per_second =
         summary.wall_seconds > 0 ? double(particles.size()) * double(summary.steps) / summary.wall_seconds : 0.0;

@@ -107,6 +107,9 @@ class Engine {
   // forms the seepage discharge (Eq. 27b) of those pressures, which frames report and the next
   // step's surface switch (Eq. 39) reads as the last evaluation's, in place of the stale one.
   virtual void refresh_seepage() {}
+  // The pore water that entered the soil through each kind of boundary since the run began
+  // (engine_state.h); zero for a run without soil.
+  virtual PoreWaterAccount pore_water_account() const { return {}; }
 
   // Stages (server/solver/staged_engine.h): the index of the one running (into the case's stages;
   // 0 for a run of one stage), the switches since the last call, and the operator's hand-over to

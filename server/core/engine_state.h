@@ -14,6 +14,16 @@
 
 namespace cascade {
 
+// The pore water that entered the soil since the run began, by where it crossed (m³, per metre of
+// depth in 2D; negative where it left): rain through the flux surface (Eq. 39), drained walls
+// (Eq. 36), and surfaces that hold a prescribed pressure (ponded, seepage faces, drying, held).
+// The explicit engine integrates it step by step (server/physics/pore_water_account.h).
+struct PoreWaterAccount {
+  double rain = 0;
+  double walls = 0;
+  double surface = 0;
+};
+
 struct EngineState {
   int dimensions = 0;
   bool single_precision = false;  // the engine's Real: float values are exact in the doubles below
@@ -30,6 +40,7 @@ struct EngineState {
   // The stage running (Engine::stage) and named numbers that a stage carries over a checkpoint.
   int stage = 0;
   std::map<std::string, double> stage_values;
+  PoreWaterAccount pore_water;
 };
 
 }  // namespace cascade

@@ -10,6 +10,7 @@
 #include <thrust/host_vector.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/reduce.h>
+#include <thrust/transform.h>
 #include <thrust/transform_reduce.h>
 
 #include <algorithm>
@@ -114,6 +115,7 @@ class Simulation final : public Engine {
     launch(SymplecticPredictor<Real, Dim>{view(), start_view(), grid_, Real(dt_)}, 0, moving_);
     update_soil_stress(0.5 * dt_);
     evaluate_rates(true);
+    account_pore_water();
     if (has_soil_ && !relaxing())  // a_s is part of the seepage, held while relaxing
       launch(SeepageInertiaFilter<Real, Dim>{view(), soil_view(), sph_.h, Real(dt_)}, grid_.water_end, moving_);
     launch(SymplecticCorrector<Real, Dim>{view(), start_view(), grid_, Real(dt_)}, 0, moving_);
@@ -142,6 +144,7 @@ class Simulation final : public Engine {
   double last_dt() const override { return dt_; }
   std::size_t particle_count() const override { return phase_.size(); }
   std::size_t lost_particles() const override { return phase_.size() - active_; }
+  PoreWaterAccount pore_water_account() const override { return pore_water_account_; }
   const char* device_name() const override { return Backend::name; }
   void set_forcing(const HydraulicForcing& forcing) override { forcing_ = forcing; }
   HydraulicForcing forcing() const override { return forcing_; }
@@ -172,6 +175,7 @@ class Simulation final : public Engine {
 
   void restart_clock() override {
     time_ = 0;
+    pore_water_account_ = {};  // counted from the clock's start, as the displacement
     if (!has_soil_) return;
     const FieldFrame now = frame();
     initial_position_ = now.position;
@@ -185,6 +189,7 @@ class Simulation final : public Engine {
     s.time = time_, s.last_dt = dt_, s.steps = steps_;
     s.forcing = forcing_;
     s.displacement_reference = initial_position_;
+    s.pore_water = pore_water_account_;
     for_each_carried_array(*this, [&s](const char* name, const auto& array) { export_array(array, name, s); });
     return s;
   }
@@ -200,6 +205,7 @@ class Simulation final : public Engine {
     time_ = s.time, dt_ = s.last_dt, steps_ = s.steps;
     forcing_ = s.forcing;
     if (has_soil_) initial_position_ = s.displacement_reference;
+    pore_water_account_ = s.pore_water;
     // The neighbour lists of the coming steps are those built at the listed positions, in the
     // order the arrays are in (sorted by those positions' cells): sorting again there keeps that
     // order (the sort is stable) and lists the same neighbours; the particles then go back to
@@ -223,7 +229,7 @@ class Simulation final : public Engine {
     add(effective_stress_), add(start_stress_);
     add(dummy_pore_pressure_), add(dummy_stress_), add(dummy_velocity_), add(wall_), add(wall_pore_pressure_);
     add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
-    add(unbalanced_acceleration_);
+    add(unbalanced_acceleration_), add(pore_water_inflow_), add(pore_water_blocks_);
     return bytes + cells_.bytes() + neighbours_.bytes();
   }
 
@@ -532,7 +538,27 @@ class Simulation final : public Engine {
             raw(dummy_pore_pressure_), raw(dummy_stress_), raw(dummy_velocity_),
             raw(free_surface_), raw(surface_state_), raw(effective_stress_), raw(velocity_gradient_),
             raw(porosity_rate_), raw(plastic_strain_), raw(skeleton_acceleration_), raw(wall_),
-            raw(wall_pore_pressure_)};
+            raw(wall_pore_pressure_), raw(pore_water_inflow_)};
+  }
+
+  // Adds what crossed the soil's boundaries over the step (pore_water_account.h) at the rates of
+  // the half step, those the corrector advances the pore water with: block sums in parallel, then
+  // the blocks in order on the host, the same bits for any number of threads.
+  void account_pore_water() {
+    if (!has_soil_ || relaxing()) return;
+    using BlockSum = PoreWaterInflowBlockSum<Real>;
+    const std::uint32_t begin = grid_.water_end, end = std::uint32_t(moving_);
+    const std::uint32_t blocks = (end - begin + BlockSum::kBlock - 1) / BlockSum::kBlock;
+    pore_water_blocks_.resize(std::max<std::uint32_t>(blocks, 1));
+    thrust::transform(Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
+                      thrust::counting_iterator<std::uint32_t>(blocks), pore_water_blocks_.begin(),
+                      BlockSum{raw(pore_water_inflow_), begin, end});
+    const thrust::host_vector<PoreWaterInflow<Real>> sums(pore_water_blocks_.begin(), pore_water_blocks_.begin() + blocks);
+    for (const PoreWaterInflow<Real>& sum : sums) {
+      pore_water_account_.rain += dt_ * double(sum.rain);
+      pore_water_account_.walls += dt_ * double(sum.walls);
+      pore_water_account_.surface += dt_ * double(sum.surface);
+    }
   }
 
   // σ', κ and φ at a Symplectic stage (soil_stress_update.h), from the step's start.
@@ -601,6 +627,7 @@ class Simulation final : public Engine {
     seepage_.assign(n, V::Zero());
     skeleton_acceleration_.assign(n, V::Zero());  // at rest
     unbalanced_acceleration_.assign(n, Real(0));
+    pore_water_inflow_.assign(n, PoreWaterInflow<Real>{Real(0), Real(0), Real(0)});
     free_surface_.assign(n, 0);
     surface_state_.assign(n, std::uint8_t(SurfaceState::flux));
   }
@@ -693,6 +720,9 @@ class Simulation final : public Engine {
   // stage orchestrator sets it again after a restore().
   double local_damping_ = 0;
   Vector<Real> unbalanced_acceleration_;  // per soil particle: |a| of the last evaluation before damping
+  Vector<PoreWaterInflow<Real>> pore_water_inflow_;  // per soil particle, of the last evaluation
+  Vector<PoreWaterInflow<Real>> pore_water_blocks_;  // their block sums (account_pore_water)
+  PoreWaterAccount pore_water_account_;               // since the clock's start
   std::vector<double> initial_position_;  // host, by id: N × 3
   Vector<std::uint32_t> id_, scratch_index_;
 };

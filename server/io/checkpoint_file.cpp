@@ -143,6 +143,9 @@ std::uint64_t content_checksum(const Checkpoint& c, const std::string& spec_byte
   for (const auto& [name, values] : s.integers) d.add(name), d.add(values);
   d.add(std::uint64_t(s.stage));
   for (const auto& [name, value] : s.stage_values) d.add(name), d.add(value);
+  // The pore-water account (2026-12-06); a zero one hashes as files from before it did.
+  const PoreWaterAccount& w = s.pore_water;
+  if (w.rain != 0 || w.walls != 0 || w.surface != 0) d.add(w.rain), d.add(w.walls), d.add(w.surface);
   return d.value();
 }
 
@@ -194,6 +197,10 @@ void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
       write_summary(file, c);
       const std::string spec_bytes = c.spec.SerializeAsString();
       write_u64(file, "checksum", content_checksum(c, spec_bytes));
+      // The pore water's account (EngineState::pore_water), as root attributes beside the time.
+      write_double(file, "pore_water_rain", c.engine.pore_water.rain);
+      write_double(file, "pore_water_walls", c.engine.pore_water.walls);
+      write_double(file, "pore_water_surface", c.engine.pore_water.surface);
       write_bytes(file, "case_spec", spec_bytes);
       write_bytes(file, "journal", c.journal);
       write_forcing(file, c.engine.forcing);
@@ -248,6 +255,11 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
         if (value.size() != 1) throw std::runtime_error("/stage/" + name + " must hold one value");
         s.stage_values[name] = value[0];
       }
+    }
+    if (H5Aexists(file, "pore_water_rain") > 0) {  // files from before 2026-12-06 have none
+      s.pore_water.rain = read_double(file, "pore_water_rain");
+      s.pore_water.walls = read_double(file, "pore_water_walls");
+      s.pore_water.surface = read_double(file, "pore_water_surface");
     }
     Handle engine(H5Gopen2(file, "engine", H5P_DEFAULT), H5Gclose, "open /engine");
     for (const std::string& name : dataset_names(engine)) {

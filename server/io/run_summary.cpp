@@ -107,6 +107,9 @@ std::string run_summary_json(const RunSummary& s) {
   j += "  \"particle_steps_per_second\": " + json_number(s.particle_steps_per_second) + ",\n";
   j += "  \"bytes_per_particle\": " + json_number(s.bytes_per_particle) + ",\n";
   j += "  \"lost_particles\": " + std::to_string(s.lost_particles) + ",\n";
+  if (s.pore_water.present)
+    j += "  \"pore_water\": {\"rain\": " + json_number(s.pore_water.rain) + ", \"walls\": " +
+         json_number(s.pore_water.walls) + ", \"surface\": " + json_number(s.pore_water.surface) + "},\n";
   j += "  \"events\": [";
   for (std::size_t i = 0; i < s.events.size(); ++i) {
     const RunEvent& e = s.events[i];

@@ -32,6 +32,12 @@ struct RunSummary {
   double particle_steps_per_second = 0.0;  // particles × steps / wall_seconds
   double bytes_per_particle = 0.0;         // device memory of the particle arrays / total
   std::uint64_t lost_particles = 0;        // particles that left the domain
+  // The pore water that entered the soil through each boundary (Engine::pore_water_account; m³,
+  // m² per metre of depth in 2D), written only for a case with soil.
+  struct PoreWater {
+    bool present = false;
+    double rain = 0, walls = 0, surface = 0;
+  } pore_water;
   std::vector<RunEvent> events;
 };
 

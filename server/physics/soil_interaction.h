@@ -75,7 +75,8 @@ struct SoilInteraction {
     const std::uint32_t water_end = grid.water_end, moving_end = grid.moving_end;
 
     Real divergence = 0;          // Σ V_j (v_i − v_j)·∇_i W_ij, every neighbour (Eq. 22)
-    Real seepage_sum = 0;         // Σ_j of ⟨∇·q_w⟩_i, soil and drained-wall dummies (seepage_exchange.h)
+    Real pair_sum = 0;            // Σ_j of ⟨∇·q_w⟩_i over the soil neighbours (seepage_exchange.h)
+    Real wall_sum = 0;            // and over a drained wall's dummies
     bool covered = false;         // a particle above i in its lattice column (seepage_exchange.h)
     V first_moment = V::Zero();   // Σ_j w_ij x_ij of the pair weights, not 0 where the support is cut
     bool near_prescribed = false;  // a soil neighbour holds a prescribed p_w (Eq. 39)
@@ -132,7 +133,7 @@ struct SoilInteraction {
             p.pressure[i], p.pressure[j], Real(0.5) * (rho_w_i + p.water_density[j]), driving, x_ij);
         const Real weight = seepage_exchange_pair<Real, Dim>(volume_j, (conductivity_i + soil.conductivity[j]) * inv_g,
                                                              Real(1), x_ij, inv_r2_eta2, grad_w);
-        seepage_sum += weight * potential;
+        pair_sum += weight * potential;
         first_moment += weight * x_ij;
         near_prescribed =
             near_prescribed || (soil.free_surface[j] && soil.surface_state[j] != std::uint8_t(SurfaceState::flux));
@@ -141,7 +142,7 @@ struct SoilInteraction {
         const Real potential = seepage_potential_difference<Real, Dim>(
             p.pressure[i], p_w_b, Real(0.5) * (rho_w_i + pore_density_of(m, rho0, p_w_b)), driving_i, x_ij);
         const Real weight = own_weight();
-        seepage_sum += weight * potential;
+        wall_sum += weight * potential;
         first_moment += weight * x_ij;
       } else {
         first_moment += own_weight() * x_ij;  // an impermeable wall: a side that is there, without flux
@@ -151,13 +152,15 @@ struct SoilInteraction {
     // ⟨∇·q_w⟩_i with the rain of Eq. 39 on the particle that tops its column, and beside a
     // prescribed pressure the flux of the pairs its cut support lacks (seepage_exchange.h).
     const bool flux_surface = soil.free_surface[i] && soil.surface_state[i] == std::uint8_t(SurfaceState::flux);
+    Real missing_pairs = 0;  // the pairs a cut support lacks beside a prescribed pressure
     if (near_prescribed && !flux_surface && conductivity_i > Real(0))
-      seepage_sum -= first_moment.dot(soil.seepage[i]) / (-conductivity_i * inv_g);  // ∇Φ_i = −g q_i/K_i
-    Real seepage_divergence = -sph.laplacian_scale * seepage_sum;
+      missing_pairs = first_moment.dot(soil.seepage[i]) / (conductivity_i * inv_g);  // −∇Φ_i·Σ w x, ∇Φ_i = −g q_i/K_i
+    Real seepage_divergence = -sph.laplacian_scale * (pair_sum + wall_sum + missing_pairs);
+    Real rain = 0;  // i dp^(d−1), m³/s into the particle
     if (flux_surface && !covered) {
-      Real column_area = 1;
-      for (int a = 0; a + 1 < Dim; ++a) column_area *= sph.dp;
-      seepage_divergence -= forcing.intensity_at(x_i) * column_area * rho_i / sph.mass;
+      rain = forcing.intensity_at(x_i);
+      for (int a = 0; a + 1 < Dim; ++a) rain *= sph.dp;
+      seepage_divergence -= rain * rho_i / sph.mass;
     }
     const Real porosity = soil.porosity[i];
     const Real saturation = soil.saturation[i];
@@ -176,6 +179,13 @@ struct SoilInteraction {
         pore_water_density_rate(rho_w_i, capacity, seepage_divergence, skeleton_share, pore_volumetric,
                                 Real(m.delta) * sph.h * Real(m.pore_sound_speed), diffusion);
     p.water_density_rate[i] = prescribed || hold_pore_water ? Real(0) : pore_rate;
+    // What crosses the boundaries here (pore_water_account.h): a particle that holds its pressure
+    // passes on through its surface what its soil pairs bring it; its own wall and missing pairs
+    // then lead from outside to outside.
+    const Real volume_scale = sph.laplacian_scale * sph.mass / rho_i;  // s V_i
+    PoreWaterInflow<Real> inflow{rain, volume_scale * wall_sum, volume_scale * missing_pairs};
+    if (prescribed) inflow = {Real(0), Real(0), -volume_scale * pair_sum};
+    soil.pore_water_inflow[i] = hold_pore_water ? PoreWaterInflow<Real>{Real(0), Real(0), Real(0)} : inflow;
     const Real dt_sp = hold_pore_water ? std::numeric_limits<Real>::max()
                                        : seepage_time_step(rho0 * sph.gravity.norm(), Real(m.water_bulk_modulus),
                                                            sph.h, capacity, conductivity_i);

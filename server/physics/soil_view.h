@@ -8,6 +8,7 @@
 
 #include "server/core/soil_material.h"
 #include "server/core/types.h"
+#include "server/physics/pore_water_account.h"
 #include "server/physics/soil_momentum.h"
 
 namespace cascade {
@@ -46,6 +47,8 @@ struct SoilView {
   // k > 0 for a dummy of the wall whose prescribed pore pressure is wall_pore_pressure[k − 1].
   const std::uint8_t* wall;
   const Real* wall_pore_pressure;
+  PoreWaterInflow<Real>* pore_water_inflow;  // per soil particle: what enters through each boundary
+                                             // (pore_water_account.h), by the soil pass
 };
 
 // The pore-water state of Eq. 6 with the soil's bulk modulus: p_w = K_w/ρ_w0 (ρ_w − ρ_w0), and

@@ -163,6 +163,11 @@ double ImplicitPoreWater::step(EngineState& s, const HydraulicForcing& forcing, 
   balance_.rain += d.rain, balance_.infiltration += d.infiltration, balance_.runoff += d.runoff;
   balance_.exfiltration += d.exfiltration, balance_.walls += d.walls, balance_.free_water += d.free_water;
   balance_.storage += d.storage;
+  // The run's account (engine_state.h): rain that entered, the rest of the surface's exchange (ponded
+  // inflow, seepage faces, free water), drained walls; together the stage's storage change.
+  s.pore_water.rain += d.rain - d.runoff;
+  s.pore_water.surface += d.infiltration - (d.rain - d.runoff) - d.exfiltration + d.free_water;
+  s.pore_water.walls += d.walls;
 
   // The next step: scaled towards the aimed change of water content, at most 1.5 times longer,
   // shorter after a step that needed many iterations (a step cut short by max_step leaves the

@@ -68,6 +68,9 @@ class StagedEngine final : public Engine {
     return dynamic_->frame();
   }
   const char* device_name() const override { return dynamic_->device_name(); }
+  PoreWaterAccount pore_water_account() const override {
+    return unsynced_ ? pore_water_state_.pore_water : dynamic_->pore_water_account();
+  }
   void set_forcing(const HydraulicForcing& forcing) override { dynamic_->set_forcing(forcing); }
   HydraulicForcing forcing() const override { return dynamic_->forcing(); }
   void restart_clock() override { dynamic_->restart_clock(); }

@@ -992,6 +992,7 @@ TEST(RunSummary, FailedRunHasEveryKeyAndEscapedError) {
   summary.particle_steps_per_second = 9.87654321e7;
   summary.bytes_per_particle = 412.0;
   summary.lost_particles = 3;
+  summary.pore_water = {true, 0.52, -0.125, -0.031};
   summary.events = {{0.5, 100, "steer", "rainfall 20 -> 40 mm/h"},
                     {0.75, 150, "particles_lost", "3 left the \"domain\""}};
   write_run_json(dir / "run.json", summary);
@@ -1021,6 +1022,9 @@ TEST(RunSummary, FailedRunHasEveryKeyAndEscapedError) {
   EXPECT_EQ(json["particle_steps_per_second"].number, 9.87654321e7);
   EXPECT_EQ(json["bytes_per_particle"].number, 412.0);
   EXPECT_EQ(json["lost_particles"].number, 3);
+  EXPECT_EQ(json["pore_water"]["rain"].number, 0.52);
+  EXPECT_EQ(json["pore_water"]["walls"].number, -0.125);
+  EXPECT_EQ(json["pore_water"]["surface"].number, -0.031);
   ASSERT_EQ(json["events"].items.size(), 2u);
   EXPECT_EQ(json["events"].items[1]["time"].number, 0.75);
   EXPECT_EQ(json["events"].items[1]["step"].number, 150);
@@ -1042,6 +1046,7 @@ TEST(RunSummary, CompletedRunHasNoErrorAndNullForNonFinite) {
   EXPECT_EQ(json["particle_steps_per_second"].kind, Json::Kind::null);
   EXPECT_EQ(json["events"].kind, Json::Kind::array);
   EXPECT_TRUE(json["events"].items.empty());
+  EXPECT_FALSE(json.has("pore_water"));  // a case without soil
 }
 
 }  // namespace

@@ -235,6 +235,12 @@ std::vector<ProfileCheck> van_genuchten_run(double dp) {
         run.engine->time());
     const WaterBalance b = staged(run).water_balance();
     worst_balance = worse(worst_balance, std::fabs(b.error()) / b.rain);
+    // The run's account (Engine::pore_water_account) carries the stage's terms: the rain taken,
+    // and with the rest of the surface and the walls the whole net inflow.
+    const PoreWaterAccount account = run.engine->pore_water_account();
+    EXPECT_NEAR(account.rain, b.rain - b.runoff, 1e-12 * b.rain);
+    EXPECT_NEAR(account.rain + account.walls + account.surface, b.infiltration - b.exfiltration + b.walls + b.free_water,
+                1e-12 * b.rain);
     checks.push_back(heads);
   }
   char metric[112];

@@ -105,6 +105,12 @@ void water_balance(const std::string& name, const std::string& case_file, double
     EXPECT_EQ(surface.flux, 12u);  // the top layer at dp = 0.04 m, every particle on the flux condition
     EXPECT_EQ(surface.held, 0u);
     const double came_in = intensity * width * run.engine->time();
+    // The engine's own count of the rain (pore_water_account.h): the flux times the top's width
+    // and the time, to round-off; nothing else crossed.
+    const PoreWaterAccount account = run.engine->pore_water_account();
+    EXPECT_NEAR(account.rain, came_in, 1e-9 * std::fabs(came_in));
+    EXPECT_EQ(account.walls, 0.0);
+    EXPECT_EQ(account.surface, 0.0);
     const double gained = testing::pore_water_volume(run.engine->frame(), soil, particle_mass) - initial_volume;
     char metric[160];
     std::snprintf(metric, sizeof metric, "pore-water volume gained (Σ V Θ*) / flux × surface × time at %.2f day", day);
