@@ -1,5 +1,6 @@
 """Steering on a real cascade-server: a rainfall increase takes effect at the next step boundary
-and speeds the rise of pore pressure at a probe compared with the same run without it; replaying
+and speeds the rise of pore pressure at a probe compared with the same run without it, and the
+status counts the rain that entered; replaying
 the steered run's journal with `cascade run --replay` gives the same bits; `cascade set
 rainfall.region` confines the rain to a box."""
 
@@ -46,7 +47,9 @@ class RainfallIncrease(unittest.TestCase):
                 frame = f["frames"]["000000"]
                 cls.server_end = {k: frame[k][()] for k in ("id", "position", "pore_pressure", "saturation", "seepage")}
                 cls.server_end_time = frame.attrs["time"]
-            cls.journal = json.loads(server.cli("get", names["steered"], "--json").stdout)["journal_path"]
+            steered = json.loads(server.cli("get", names["steered"], "--json").stdout)
+            cls.journal = steered["journal_path"]
+            cls.pore_water = steered["status"]["pore_water"]
 
     def test_change_takes_effect_at_the_next_step_boundary(self):
         self.assertEqual(int(self.change["effective_step"]), CHANGE_STEP + 1)
@@ -70,6 +73,14 @@ class RainfallIncrease(unittest.TestCase):
         rise_steered = self.steered[-1][1] - before
         self.assertGreater(rise_steered, 5 * max(rise_baseline, 1.0),
                            f"rise {rise_steered:.1f} Pa with more rain, {rise_baseline:.1f} Pa without")
+
+    def test_status_counts_the_rain_that_entered(self):
+        # The column's 12 top particles take the rain over the 1.2 m width: 1e-6 m/s for 200 s,
+        # then 5e-5 m/s to the end at 600 s; its base is impermeable and nothing ponds.
+        expected = 1.2 * (RAIN_BEFORE * 2.0 * CHANGE_STEP + RAIN_AFTER * (600.0 - 2.0 * CHANGE_STEP))
+        self.assertAlmostEqual(self.pore_water["rain"], expected, delta=1e-9 * expected)
+        self.assertEqual(self.pore_water.get("walls", 0.0), 0.0)
+        self.assertEqual(self.pore_water.get("surface", 0.0), 0.0)
 
     def test_replay_of_the_journal_is_bit_identical(self):
         out = clitest.out_dir("replay")

@@ -1,16 +1,20 @@
-// Issue 13, item 5: a smooth pore-pressure field. The particle-to-particle noise of p_w (the
-// largest residual of a local linear fit, soil_profiles.h: pore_pressure_noise) below 2% of the
-// field's range over the soil, in the infiltration column (paper Section 4.1), the Liakopoulos
-// column (Section 4.2), and the storm demo's and the accelerated demo's slopes and the infiltration
-// column seeded laterally (known failures).
+// Issue 13, item 5: a smooth pore-pressure field. The particle-to-particle noise of p_w below 2%
+// of the field's range over the soil, in the infiltration column (paper Section 4.1), the
+// Liakopoulos column (Section 4.2), the infiltration column seeded laterally, and the storm demo's
+// and the accelerated demo's slopes, by two measures: the largest residual of a local linear fit
+// (soil_profiles.h: pore_pressure_noise), which also reads a resolved curvature as noise (the
+// demos' known failures), and the amplitude of the odd-even mode by fourth differences along the
+// lattice (odd_even_mode.h), which a field up to cubic does not reach.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
 #include "tests/validation/case_run.h"
 #include "tests/validation/liakopoulos_case.h"
+#include "tests/validation/odd_even_mode.h"
 #include "tests/validation/soil_profiles.h"
 #include "tests/validation/validation_table.h"
 
@@ -30,12 +34,57 @@ void validate_smooth(const testing::CaseRun& run, const std::string& case_name, 
                     .bound = testing::Bound::at_most, .tolerance_source = "issue 13's bound: 2% of the field's range"});
 }
 
+// The odd-even mode's amplitude (odd_even_mode.h) against 2% of the range, on at least half the
+// soil's particles.
+void validate_odd_even(const testing::CaseRun& run, const std::string& case_name, const std::string& when) {
+  const auto mode = testing::odd_even_mode(run.engine->frame(), "pore_pressure", run.config.dp);
+  EXPECT_GT(mode.particles, 0u);
+  EXPECT_GE(2 * mode.measured, mode.particles) << mode.measured << " of " << mode.particles << " measured";
+  CASCADE_VALIDATE({.case_name = case_name,
+                    .reference = "a smooth pore-pressure field: no odd-even mode on the lattice (issue 13, item 5)",
+                    .metric = "largest |δ⁴p_w|/16 along a lattice axis / (max − min p_w), " + when,
+                    .measured = mode.largest / mode.range, .reference_value = 0.02,
+                    .bound = testing::Bound::at_most, .tolerance_source = "issue 13's bound: 2% of the field's range"});
+}
+
+// The measure itself: 0 for a cubic field on a 24 × 24 lattice, and a checkerboard of amplitude A
+// added to it read as A, wherever the lattice is (an offset origin) and with its particles crept
+// from it by a smooth displacement of up to dp/5.
+TEST(PorePressureNoise, OddEvenMeasureSeesTheModeAndNotACubic) {
+  constexpr int kSide = 24;
+  constexpr double kDp = 0.1, kAmplitude = 3.0;
+  FieldFrame f;
+  f.dimensions = 2;
+  FieldFrame::RealField smooth{"smooth", "Pa", 1, {}}, checkered{"checkered", "Pa", 1, {}};
+  for (int a = 0; a < kSide; ++a)
+    for (int b = 0; b < kSide; ++b) {
+      const double creep = 0.2 * kDp * std::sin(0.3 * a + 0.2 * b);
+      const double x = 0.37 + a * kDp + creep, z = -1.21 + b * kDp - creep;
+      f.position.insert(f.position.end(), {x, 0.0, z});
+      f.phase.push_back(std::uint8_t(Phase::soil));
+      f.id.push_back(std::uint32_t(f.id.size()));
+      // A cubic of the lattice coordinates (the fourth difference takes the particles as on it).
+      const double u = a * kDp, w = b * kDp;
+      const double cubic = 1e3 * (1 + 2 * u - 3 * w + u * u - 4 * u * w + 2 * u * u * u - w * w * w + u * u * w);
+      smooth.values.push_back(cubic);
+      checkered.values.push_back(cubic + ((a + b) % 2 ? kAmplitude : -kAmplitude));
+    }
+  f.fields = {smooth, checkered};
+  const auto flat = testing::odd_even_mode(f, "smooth", kDp);
+  const auto mode = testing::odd_even_mode(f, "checkered", kDp);
+  EXPECT_EQ(flat.particles, std::size_t(kSide * kSide));
+  EXPECT_EQ(flat.measured, std::size_t(kSide * kSide - 4 * 4));  // all but the 2 × 2 corners' blocks
+  EXPECT_LT(flat.largest, 1e-9 * flat.range);
+  EXPECT_NEAR(mode.largest, kAmplitude, 1e-9 * mode.range);
+}
+
 TEST(PorePressureNoise, InfiltrationColumn) {
   testing::CaseRun run("infiltration_1d.yaml");
   const std::string name = "1D infiltration (cases/infiltration_1d.yaml)";
   for (double day : {0.05, 0.25}) {
     run.run_until(day * 86400.0);
     validate_smooth(run, name, "t = " + std::to_string(day).substr(0, 4) + " day");
+    validate_odd_even(run, name, "t = " + std::to_string(day).substr(0, 4) + " day");
   }
 }
 
@@ -70,6 +119,7 @@ TEST(PorePressureNoise, LiakopoulosColumn) {
   for (double t : {300.0, 1200.0}) {
     run.run_until(t / kAlpha);
     validate_smooth(run, name, "t = " + std::to_string(int(t)) + " s");
+    validate_odd_even(run, name, "t = " + std::to_string(int(t)) + " s");
   }
 }
 
@@ -83,7 +133,11 @@ TEST(PorePressureNoise, LiakopoulosColumn) {
 // linear fit reads as −p''⟨r²⟩/2), not the odd-even alternation of the explicit demo below. The
 // staircase of the 40° surface (two particles on a tread every sixth column) alternates by some
 // 30 Pa (1.5%). The noise measure has to separate resolved curvature from particle noise before
-// this figure says which it is (issue 13, item 5).
+// this figure says which it is (issue 13, item 5). The odd-even mode's amplitude by fourth
+// differences (odd_even_mode.h), blind to curvature, measured 3.0% and 1.6% when added
+// (2026-12-06), the largest along x at (2.75, 2.55) m, a row whose five particles run from inside
+// the slope to its 40° face, across the wetting front below the face: a front a few particles
+// wide has a fourth difference of its own, so the 3.0% at 1 h is not yet shown to be a mode.
 TEST(PorePressureNoise, StormDemoRainStageKnownFailure) {
   testing::CaseRun run("cascade_storm_2d.yaml");
   const std::string name = "Storm cascade demo, rain stage (cases/cascade_storm_2d.yaml)";
@@ -91,6 +145,7 @@ TEST(PorePressureNoise, StormDemoRainStageKnownFailure) {
     run.run_until(hours * 3600.0);
     ASSERT_EQ(run.engine->stage(), 1) << "still raining on the standing slope";
     validate_smooth(run, name, "t = " + std::to_string(int(hours)) + " h");
+    validate_odd_even(run, name, "t = " + std::to_string(int(hours)) + " h");
   }
 }
 
@@ -98,12 +153,17 @@ TEST(PorePressureNoise, StormDemoRainStageKnownFailure) {
 // checkerboard), on the explicit step.
 // Measured when written: 55%, 47% and 68% of the range at 2, 5 and 10 s, the largest residuals on
 // the slope's surface, whose particles alternate by some 300 Pa.
+// By the odd-even mode's amplitude (added 2026-12-06): 11.1%, 2.3% and 2.04% at 2, 5 and 10 s, the
+// largest along x at (1.45, 3.65) m, a row running from inside the slope to its face where the
+// rain's front is a particle or two deep at 2 s, and at 10 s along z at (0.05, 3.75) m, the column
+// of the free face at x = 0 that the front descends.
 TEST(PorePressureNoise, CascadeDemoKnownFailure) {
   testing::CaseRun run("cascade_demo_2d.yaml");
   const std::string name = "Cascade demo 2D (cases/cascade_demo_2d.yaml)";
   for (double t : {2.0, 5.0, 10.0}) {
     run.run_until(t);
     validate_smooth(run, name, "t = " + std::to_string(int(t)) + " s");
+    validate_odd_even(run, name, "t = " + std::to_string(int(t)) + " s");
   }
 }
 
