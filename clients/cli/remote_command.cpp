@@ -273,9 +273,14 @@ int watch(Remote& remote) {
       std::puts(json_of(update).c_str());
     } else if (update.has_status()) {
       const auto& s = update.status();
-      std::printf("%s  t = %.6g s  step %llu  dt = %.3g s  %.1f steps/s  KE = %.4g J  max soil speed %.3g m/s  stage %s\n",
+      std::printf("%s  t = %.6g s  step %llu  dt = %.3g s  %.1f steps/s  KE = %.4g J  max soil speed %.3g m/s  stage %s",
                   state_name(s.state()), s.time(), static_cast<unsigned long long>(s.step()), s.dt(),
                   s.steps_per_second(), s.kinetic_energy(), s.max_soil_speed(), s.stage_name().c_str());
+      // The pore water's account (docs/api.md), for a case with soil.
+      if (s.has_pore_water())
+        std::printf("  pore water in: rain %.4g, walls %.4g, surface %.4g", s.pore_water().rain(), s.pore_water().walls(),
+                    s.pore_water().surface());
+      std::printf("\n");
     } else {
       const auto& e = update.event();
       std::printf("event  t = %.6g s  step %llu  %s: %s (%s)\n", e.time(), static_cast<unsigned long long>(e.step()),

@@ -665,11 +665,13 @@ void Session::publish_status() {
     status_.set_dt(engine_->last_dt());
     status_.set_stage(std::uint32_t(engine_->stage()));
     status_.set_stage_name(stage_names_.at(std::size_t(engine_->stage())));
-    const PoreWaterAccount account = engine_->pore_water_account();
-    v1::PoreWaterAccount& pore_water = *status_.mutable_pore_water();
-    pore_water.set_rain(account.rain);
-    pore_water.set_walls(account.walls);
-    pore_water.set_surface(account.surface);
+    if (config_.particles.count(Phase::soil) > 0) {  // the pore water's account, for a case with soil
+      const PoreWaterAccount account = engine_->pore_water_account();
+      v1::PoreWaterAccount& pore_water = *status_.mutable_pore_water();
+      pore_water.set_rain(account.rain);
+      pore_water.set_walls(account.walls);
+      pore_water.set_surface(account.surface);
+    }
     if (state_ != v1::Simulation::RUNNING) {
       status_.set_steps_per_second(0);
       rate_wall_ = now, rate_step_ = engine_->step_count();
