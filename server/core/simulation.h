@@ -144,7 +144,10 @@ class Simulation final : public Engine {
   double last_dt() const override { return dt_; }
   std::size_t particle_count() const override { return phase_.size(); }
   std::size_t lost_particles() const override { return phase_.size() - active_; }
-  PoreWaterAccount pore_water_account() const override { return pore_water_account_; }
+  PoreWaterAccount pore_water_account() const override {
+    const thrust::host_vector<double> totals(pore_water_totals_.begin(), pore_water_totals_.end());
+    return {totals[0], totals[1], totals[2]};
+  }
   const char* device_name() const override { return Backend::name; }
   void set_forcing(const HydraulicForcing& forcing) override { forcing_ = forcing; }
   HydraulicForcing forcing() const override { return forcing_; }
@@ -175,7 +178,7 @@ class Simulation final : public Engine {
 
   void restart_clock() override {
     time_ = 0;
-    pore_water_account_ = {};  // counted from the clock's start, as the displacement
+    thrust::fill(pore_water_totals_.begin(), pore_water_totals_.end(), 0.0);  // from the clock's start, as the displacement
     if (!has_soil_) return;
     const FieldFrame now = frame();
     initial_position_ = now.position;
@@ -189,7 +192,7 @@ class Simulation final : public Engine {
     s.time = time_, s.last_dt = dt_, s.steps = steps_;
     s.forcing = forcing_;
     s.displacement_reference = initial_position_;
-    s.pore_water = pore_water_account_;
+    s.pore_water = pore_water_account();
     for_each_carried_array(*this, [&s](const char* name, const auto& array) { export_array(array, name, s); });
     return s;
   }
@@ -205,7 +208,7 @@ class Simulation final : public Engine {
     time_ = s.time, dt_ = s.last_dt, steps_ = s.steps;
     forcing_ = s.forcing;
     if (has_soil_) initial_position_ = s.displacement_reference;
-    pore_water_account_ = s.pore_water;
+    pore_water_totals_ = std::vector<double>{s.pore_water.rain, s.pore_water.walls, s.pore_water.surface};
     // The neighbour lists of the coming steps are those built at the listed positions, in the
     // order the arrays are in (sorted by those positions' cells): sorting again there keeps that
     // order (the sort is stable) and lists the same neighbours; the particles then go back to
@@ -229,7 +232,7 @@ class Simulation final : public Engine {
     add(effective_stress_), add(start_stress_);
     add(dummy_pore_pressure_), add(dummy_stress_), add(dummy_velocity_), add(wall_), add(wall_pore_pressure_);
     add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
-    add(unbalanced_acceleration_), add(pore_water_inflow_), add(pore_water_blocks_);
+    add(unbalanced_acceleration_), add(pore_water_inflow_), add(pore_water_blocks_), add(pore_water_totals_);
     return bytes + cells_.bytes() + neighbours_.bytes();
   }
 
@@ -543,7 +546,7 @@ class Simulation final : public Engine {
 
   // Adds what crossed the soil's boundaries over the step (pore_water_account.h) at the rates of
   // the half step, those the corrector advances the pore water with: block sums in parallel, then
-  // the blocks in order on the host, the same bits for any number of threads.
+  // the blocks in order, the same bits for any number of threads.
   void account_pore_water() {
     if (!has_soil_ || relaxing()) return;
     using BlockSum = PoreWaterInflowBlockSum<Real>;
@@ -553,12 +556,7 @@ class Simulation final : public Engine {
     thrust::transform(Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
                       thrust::counting_iterator<std::uint32_t>(blocks), pore_water_blocks_.begin(),
                       BlockSum{raw(pore_water_inflow_), begin, end});
-    const thrust::host_vector<PoreWaterInflow<Real>> sums(pore_water_blocks_.begin(), pore_water_blocks_.begin() + blocks);
-    for (const PoreWaterInflow<Real>& sum : sums) {
-      pore_water_account_.rain += dt_ * double(sum.rain);
-      pore_water_account_.walls += dt_ * double(sum.walls);
-      pore_water_account_.surface += dt_ * double(sum.surface);
-    }
+    launch(AddPoreWaterBlocks<Real>{raw(pore_water_blocks_), blocks, dt_, raw(pore_water_totals_)}, 0, 1);
   }
 
   // σ', κ and φ at a Symplectic stage (soil_stress_update.h), from the step's start.
@@ -722,7 +720,7 @@ class Simulation final : public Engine {
   Vector<Real> unbalanced_acceleration_;  // per soil particle: |a| of the last evaluation before damping
   Vector<PoreWaterInflow<Real>> pore_water_inflow_;  // per soil particle, of the last evaluation
   Vector<PoreWaterInflow<Real>> pore_water_blocks_;  // their block sums (account_pore_water)
-  PoreWaterAccount pore_water_account_;               // since the clock's start
+  Vector<double> pore_water_totals_ = std::vector<double>(3, 0.0);  // rain, walls, surface since the clock's start
   std::vector<double> initial_position_;  // host, by id: N × 3
   Vector<std::uint32_t> id_, scratch_index_;
 };

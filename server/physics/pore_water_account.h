@@ -33,8 +33,8 @@ struct PoreWaterInflow {
 };
 
 // The sum of the per-particle inflows of one block of kBlock particles, in index order: the
-// engine adds the blocks on the host in order, so that the account does not depend on how the
-// particles were split among threads (Determinism tests).
+// engine then adds the blocks in order (AddPoreWaterBlocks), so that the account does not depend
+// on how the particles were split among threads (Determinism tests).
 template <typename Real>
 struct PoreWaterInflowBlockSum {
   static constexpr std::uint32_t kBlock = 256;
@@ -47,6 +47,24 @@ struct PoreWaterInflowBlockSum {
     const std::uint32_t last = end - first < kBlock ? end : first + kBlock;
     for (std::uint32_t i = first; i < last; ++i) sum = sum + inflow[i];
     return sum;
+  }
+};
+
+// Adds the block sums, in order, times the step to the running totals (rain, walls, surface),
+// which stay where the particles are: a step copies nothing back to the host. One thread.
+template <typename Real>
+struct AddPoreWaterBlocks {
+  const PoreWaterInflow<Real>* blocks;
+  std::uint32_t count;
+  double dt;
+  double* totals;
+
+  CASCADE_HD void operator()(std::uint32_t) const {
+    for (std::uint32_t k = 0; k < count; ++k) {
+      totals[0] += dt * double(blocks[k].rain);
+      totals[1] += dt * double(blocks[k].walls);
+      totals[2] += dt * double(blocks[k].surface);
+    }
   }
 };
 
