@@ -1,15 +1,18 @@
 """32 concurrent clients against one running simulation (issue 14, item 10; docs/performance.md,
 "32 clients"): 8 GetSimulation loops, 8 ListProbes loops, 8 WatchSimulation streams, 4 QueryFields
-loops and 4 RenderSnapshot loops, each a process of its own, back to back for --seconds. The
+loops and 4 RenderSnapshot loops, back to back for --seconds: with --clients native (the default)
+threads of one C++ process (bench/load_clients.cpp), with --clients python each a Python process
+of its own (the clients then take most of their core themselves). The
 simulation's solver thread (named cascade-solver) has a core of its own; the server's handlers and
 the clients share the others ("one thread fewer than the cores"). Reports the solver's steps/s
 alone before, under load and alone after (from the step counter, side by side in one run), the
 errors, GetSimulation's latency percentiles, and the server's resident memory over the requests.
 
-    /usr/bin/python3 bench/server_clients.py --build build/release [--seconds 60] [--set dp=0.05]
+    /usr/bin/python3 bench/server_clients.py --build build/release [--seconds 60] [--clients native|python]
 """
 
 import argparse
+import json
 import multiprocessing
 import os
 import pathlib
@@ -24,6 +27,8 @@ parser = argparse.ArgumentParser()
 python_client.add_running_case_arguments(parser)
 parser.add_argument("--seconds", type=float, default=60.0, help="duration of the load")
 parser.add_argument("--alone-seconds", type=float, default=15.0, help="duration of each measurement alone")
+parser.add_argument("--clients", choices=["native", "python"], default="native",
+                    help="the 32 clients as threads of bench/load_clients.cpp, or as Python processes")
 args = parser.parse_args()
 build = python_client.use_client(args.build)
 import cascade_client  # noqa: E402
@@ -81,6 +86,27 @@ def solver_tid(pid):
     raise SystemExit("no thread named cascade-solver")
 
 
+def scheduled_seconds(pid, tid):
+    """(seconds on a core, seconds runnable but waiting for one) of a thread, from the kernel's
+    scheduler accounts (Documentation/scheduler/sched-stats.rst)."""
+    on_core, waiting = (int(x) / 1e9 for x in pathlib.Path(f"/proc/{pid}/task/{tid}/schedstat").read_text().split()[:2])
+    return on_core, waiting
+
+
+class SolverClock:
+    """How the solver thread spends a stretch of wall time: on its core, waiting for it, blocked."""
+
+    def __init__(self, pid, tid):
+        self.pid, self.tid = pid, tid
+        self.start = (time.time(), *scheduled_seconds(pid, tid))
+
+    def fractions(self):
+        now, on_core, waiting = time.time(), *scheduled_seconds(self.pid, self.tid)
+        wall = now - self.start[0]
+        on, wait = (on_core - self.start[1]) / wall, (waiting - self.start[2]) / wall
+        return f"on its core {100 * on:.1f}%, waiting for it {100 * wait:.1f}%, blocked {100 * (1 - on - wait):.1f}%"
+
+
 def rate(sim, seconds):
     first, start = sim.get().status.step, time.time()
     time.sleep(seconds)
@@ -101,26 +127,46 @@ def main():
         with cascade_client.Client(address) as client:
             sim = client.create(args.case, overrides=args.set)
             sim.start()
-            os.sched_setaffinity(solver_tid(server.pid), {SOLVER_CORE})
+            solver = solver_tid(server.pid)
+            os.sched_setaffinity(solver, {SOLVER_CORE})
             os.sched_setaffinity(0, OTHER_CORES)
             time.sleep(1.0)
+            clock = SolverClock(server.pid, solver)
             before = rate(sim, args.alone_seconds)
-            results, ready, stop = multiprocessing.Queue(), multiprocessing.Barrier(len(KINDS) + 1), multiprocessing.Event()
-            clients = [multiprocessing.Process(target=client_loop, args=(k, address, sim.name, ready, stop, results))
-                       for k in KINDS]
-            for c in clients:
-                c.start()
-            ready.wait(timeout=300)  # the clients have started (imports take seconds each) and connected
+            solver_before = clock.fractions()
+            if args.clients == "native":
+                native = subprocess.Popen([str(build / "bin" / "load_clients"), "--address", address, "--name", sim.name,
+                                           "--seconds", str(args.seconds)], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                          text=True)
+                if native.stdout.readline().strip() != "ready":
+                    raise SystemExit("load_clients did not connect")
+                native.stdin.write("go\n")
+                native.stdin.flush()
+            else:
+                results, ready, stop = multiprocessing.Queue(), multiprocessing.Barrier(len(KINDS) + 1), multiprocessing.Event()
+                clients = [multiprocessing.Process(target=client_loop, args=(k, address, sim.name, ready, stop, results))
+                           for k in KINDS]
+                for c in clients:
+                    c.start()
+                ready.wait(timeout=300)  # the clients have started (imports take seconds each) and connected
             first_step, start = sim.get().status.step, time.time()
+            clock = SolverClock(server.pid, solver)
             memory = []  # (seconds into the load, MB)
             while time.time() < start + args.seconds:
                 memory.append((time.time() - start, resident_mb(server.pid)))
                 time.sleep(1.0)
             loaded = (sim.get().status.step - first_step) / (time.time() - start)
-            stop.set()
-            outcomes = [results.get(timeout=60) for _ in clients]
-            for c in clients:
-                c.join()
+            solver_loaded = clock.fractions()
+            if args.clients == "native":
+                report = json.loads(native.stdout.readline())
+                native.wait(timeout=60)
+                outcomes = [(k, n, [], []) for k, n in report["requests"].items()]
+                outcomes.append(("get", 0, report["errors"], [ms / 1e3 for ms in report["get_latencies_ms"]]))
+            else:
+                stop.set()
+                outcomes = [results.get(timeout=60) for _ in clients]
+                for c in clients:
+                    c.join()
             after = rate(sim, args.alone_seconds)
             state = cascade_client.State.Name(sim.get().state)
     finally:
@@ -133,10 +179,11 @@ def main():
     latencies = sorted(x for o in outcomes for x in o[3])
     percentile = lambda q: latencies[min(len(latencies) - 1, int(q * len(latencies)))] * 1e3  # noqa: E731
     total = sum(requests.values())
-    print(f"case {args.case} {' '.join(args.set)}; solver on core {SOLVER_CORE}, server handlers and 32 clients "
+    print(f"case {args.case} {' '.join(args.set)}; clients {args.clients}; solver on core {SOLVER_CORE}, server handlers and 32 clients "
           f"on {sorted(OTHER_CORES)}; load {os.getloadavg()[0]:.1f}")
     print(f"solver steps/s: alone before {before:.0f}, with 32 clients {loaded:.0f} "
           f"({100 * (loaded / before - 1):+.1f}%), alone after {after:.0f}; state {state}")
+    print(f"solver thread alone: {solver_before}; with the clients: {solver_loaded}")
     print("requests: " + ", ".join(f"{k} {n}" for k, n in requests.items()) + f"; total {total}; errors {len(errors)}")
     for e in errors[:5]:
         print("  ", e)

@@ -10,6 +10,7 @@
 
 #include <grpcpp/support/status.h>
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -131,7 +132,7 @@ class Session {
   void stop_running(v1::Simulation::State state, const std::string& reason);
   void report_stage_changes(const std::string& caller);  // `caller`: who made them (the solver, an operator)
   void sample_outputs(bool force);
-  void publish_status();
+  void publish_status(bool wait = true);
   void feed_taps();
   void add_event(const std::string& kind, const std::string& message, const std::string& caller);
   void journal(v1::JournalEntry entry);
@@ -147,7 +148,7 @@ class Session {
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<Command> queue_;
-  bool stop_requested_ = false;
+  std::atomic<bool> stop_requested_{false};  // also read without the lock by the solver thread
   std::string stop_reason_, stop_caller_;
   bool checkpoint_on_stop_ = false;
   bool thread_ended_ = false;
