@@ -633,6 +633,7 @@ void Session::sample_outputs(bool force) {
     if (frame.phase[i] == std::uint8_t(Phase::soil)) max_soil_speed = std::max(max_soil_speed, std::sqrt(v2));
   }
   kinetic_energy_ = energy, max_soil_speed_ = max_soil_speed;
+  refresh_pore_water();
   last_energy_wall_ = wall_now();
   // The probes are sampled outside the lock (only this thread writes probe_samples_, so it may
   // read it without one): a case of 10,000 probes held every reader of the session for the
@@ -662,6 +663,12 @@ void Session::sample_outputs(bool force) {
   }
 }
 
+// The engine keeps the account where its particles are (a copy from the device): read with the
+// kinetic energy, at a forced sample and at a change of state, not after every step.
+void Session::refresh_pore_water() {
+  if (engine_ && config_.particles.count(Phase::soil) > 0) pore_water_ = engine_->pore_water_account();
+}
+
 void Session::publish_status(bool wait) {
   const double now = wall_now();
   // After a step the status may skip a step rather than make the solver wait for a reader (see
@@ -679,11 +686,11 @@ void Session::publish_status(bool wait) {
     status_.set_stage(std::uint32_t(engine_->stage()));
     status_.set_stage_name(stage_names_.at(std::size_t(engine_->stage())));
     if (config_.particles.count(Phase::soil) > 0) {  // the pore water's account, for a case with soil
-      const PoreWaterAccount account = engine_->pore_water_account();
+      if (wait) refresh_pore_water();
       v1::PoreWaterAccount& pore_water = *status_.mutable_pore_water();
-      pore_water.set_rain(account.rain);
-      pore_water.set_walls(account.walls);
-      pore_water.set_surface(account.surface);
+      pore_water.set_rain(pore_water_.rain);
+      pore_water.set_walls(pore_water_.walls);
+      pore_water.set_surface(pore_water_.surface);
     }
     if (state_ != v1::Simulation::RUNNING) {
       status_.set_steps_per_second(0);

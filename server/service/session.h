@@ -133,6 +133,7 @@ class Session {
   void report_stage_changes(const std::string& caller);  // `caller`: who made them (the solver, an operator)
   void sample_outputs(bool force);
   void publish_status(bool wait = true);
+  void refresh_pore_water();
   void feed_taps();
   void add_event(const std::string& kind, const std::string& message, const std::string& caller);
   void journal(v1::JournalEntry entry);
@@ -176,6 +177,7 @@ class Session {
   std::uint64_t rate_step_ = 0;
   std::size_t lost_particles_ = 0;
   double kinetic_energy_ = 0, max_soil_speed_ = 0;
+  PoreWaterAccount pore_water_;  // as of the last sample (refresh_pore_water)
 
   std::mutex join_mutex_;  // stop() may come from the delete handler and from shutdown at once
   std::thread thread_;
