@@ -72,6 +72,15 @@ class CellSort {
     grid_.cell_start = raw(cell_start_);
   }
 
+  // A copy's grid view points into the copy's own arrays.
+  CellSort(const CellSort& other)
+      : grid_(other.grid_), key_(other.key_), order_(other.order_), cell_start_(other.cell_start_),
+        active_(other.active_), moving_(other.moving_) {
+    grid_.cell_start = raw(cell_start_);
+    if (grid_.particle_key) grid_.particle_key = raw(key_);
+  }
+  CellSort& operator=(const CellSort&) = delete;
+
   // Sorts by cell: afterwards order()[k] is the old index of the particle now at k; call
   // reorder() on every per-particle field. Particles outside the domain go last.
   void sort(const Vector<Vec<Real, Dim>>& position, const Vector<Phase>& phase) {

@@ -107,6 +107,14 @@ class Simulation final : public Engine {
     density_gradients();
   }
 
+  // A member-wise copy (device arrays copied on the device); grid_ holds pointers into cells_'
+  // arrays, so the copy's view is taken again from its own.
+  std::unique_ptr<Engine> clone() const override {
+    auto copy = std::make_unique<Simulation>(*this);
+    copy->grid_ = copy->cells_.view();
+    return copy;
+  }
+
   void step() override {
     if (!lists_hold()) sort_by_cell();
     evaluate_rates(false);

@@ -185,6 +185,14 @@ EngineState StagedEngine::state() const {
   return s;
 }
 
+// The dynamic engine's clone, then this engine's stage and its numbers as restore() sets them from
+// a state: the implicit stage's solver is rebuilt from the fields, as after a checkpoint.
+std::unique_ptr<Engine> StagedEngine::clone() const {
+  auto copy = std::make_unique<StagedEngine>(dynamic_->clone(), config_, plan_, forcing_times_);
+  copy->restore(state());
+  return copy;
+}
+
 void StagedEngine::restore(const EngineState& s) {
   if (s.stage < 0 || std::size_t(s.stage) >= plan_.size())
     throw std::invalid_argument("the state is of stage " + std::to_string(s.stage) + "; the case has " +

@@ -79,6 +79,7 @@ class StagedEngine final : public Engine {
   void zero_velocities() override { dynamic_->zero_velocities(); }
   EngineState state() const override;
   void restore(const EngineState& state) override;
+  std::unique_ptr<Engine> clone() const override;
 
   int stage() const override { return current_; }
   std::vector<StageChange> take_stage_changes() override;

@@ -1,5 +1,6 @@
 // Engine::state / Engine::restore: an engine restored from a state taken between steps runs on
-// with the same bits as the engine it was taken from (the checkpoints' promise, docs/api.md).
+// with the same bits as the engine it was taken from (the checkpoints' promise, docs/api.md); and
+// Engine::clone, the forks' copy, the same without the round trip through the host.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -103,6 +104,39 @@ TEST(EngineState, RainedColumnContinuesBitIdentically) {
 // state and the end.
 TEST(EngineState, DamBreakContinuesBitIdentically) {
   expect_restore_continues_bit_identically(coarse_case("dam_break_2d", "0.02"), 200, 300);
+}
+
+// Engine::clone (ForkSimulation): the clone and the original, each stepped on, stay bit-identical,
+// and stepping one leaves the other as it was (no array shared between them).
+void expect_clone_continues_bit_identically(const Case& c, int before, int after) {
+  const auto original = make_engine(c.config, c.particles);
+  for (int k = 0; k < before; ++k) original->step();
+  const auto clone = original->clone();
+  const FieldFrame at_clone = original->frame();
+  expect_same_frames(clone->frame(), at_clone);
+  for (int k = 0; k < after; ++k) original->step();
+  expect_same_frames(clone->frame(), at_clone);  // untouched by the original's steps
+  for (int k = 0; k < after; ++k) clone->step();
+  expect_same_frames(clone->frame(), original->frame());
+  EXPECT_EQ(clone->last_dt(), original->last_dt());
+  EXPECT_EQ(clone->pore_water_account().rain, original->pore_water_account().rain);
+  const FieldFrame at_end = original->frame();
+  bool changed = !same_bits(at_clone.position, at_end.position);
+  for (std::size_t k = 0; k < at_end.fields.size(); ++k)
+    changed = changed || !same_bits(at_clone.fields[k].values, at_end.fields[k].values);
+  EXPECT_TRUE(changed);
+}
+
+TEST(EngineState, CloneOfSoilUnderWaterContinuesBitIdentically) {
+  expect_clone_continues_bit_identically(coarse_case("submerged_layer_2d", "0.02"), 15, 25);
+}
+
+TEST(EngineState, CloneOfDamBreakContinuesBitIdentically) {
+  expect_clone_continues_bit_identically(coarse_case("dam_break_2d", "0.02"), 200, 300);
+}
+
+TEST(EngineState, CloneOfRainedColumnContinuesBitIdentically) {
+  expect_clone_continues_bit_identically(coarse_case("infiltration_1d", "0.02"), 20, 30);
 }
 
 TEST(EngineState, RestoreRefusesAnotherParticleSet) {
