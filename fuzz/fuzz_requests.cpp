@@ -29,7 +29,7 @@ void check(const std::uint8_t* data, std::size_t size, Check check_request) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
-  const std::uint8_t kind = data[0] % 8;
+  const std::uint8_t kind = data[0] % 9;
   ++data;
   --size;
   const double end_time = 3600;  // a simulation's end time, for the checks that bound times by it
@@ -56,6 +56,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       break;
     case 5:
       check<v1::WatchSimulationRequest>(data, size, [](const auto& r) { return service::check_watch(r); });
+      break;
+    case 7:
+      check<v1::ForkSimulationRequest>(data, size, [&](const auto& r) {
+        v1::Forcing current;
+        current.mutable_ponding()->set_p_max(1e3);
+        return service::check_fork(r, current, 2, end_time);
+      });
       break;
     case 6: {
       const std::string name(reinterpret_cast<const char*>(data), size);

@@ -26,7 +26,8 @@ void print_usage(std::FILE* out) {
       "  list | get SIM | start SIM | pause SIM | resume SIM | delete SIM\n"
       "  step SIM N | run-until SIM T\n"
       "  set SIM KEY=VALUE... [--at T]     rainfall.intensity, ponding.p_max, ponding.p_min (none: no limit),\n"
-      "        rainfall.region=X0,Z0,X1,Z1 (3D: X0,Y0,Z0,X1,Y1,Z1; none: everywhere)\n"
+      "        rainfall.factor=F (the case's rain, series or constant, times F), rainfall.region=X0,Z0,X1,Z1\n"
+      "        (3D: X0,Y0,Z0,X1,Y1,Z1; none: everywhere)\n"
       "  advance-stage SIM [--reason TEXT]   the hand-over to the case's next stage (ScenarioSpec.stages)\n"
       "  watch SIM [--interval S]\n"
       "  snapshot SIM [SNAPSHOT OPTIONS] --out FILE.png     one PNG, rendered on the server\n"
@@ -37,7 +38,11 @@ void print_usage(std::FILE* out) {
       "        --elevation D --zoom Z --fov D --eye X,Y,Z --target X,Y,Z --width W --height H --background R,G,B\n"
       "  query SIM FIELD... [--phase water|soil|boundary] [--box X0,Y0,Z0,X1,Y1,Z1] [--stride N] --out F.h5|F.csv\n"
       "  probes SIM [--since T] | events SIM [--since T]\n"
-      "  checkpoint SIM | checkpoints SIM | restore SIM CHECKPOINT   (ckpt-NNNN or its full name)\n"
+      "  checkpoint SIM | checkpoints SIM | restore SIM CHECKPOINT   (ckpt-NNNN or its full name)\n"      "  fork SIM [KEY=VALUE]... [--id ID]   a what-if branch with SIM's state at its next step boundary,\n"
+      "        paused there, with the forcing changes of `set`; SIM goes on as it was\n"
+      "  ensemble SIM (--rain-factors F,F,... | --hyetograph FILE...) [--time-unit U] [--intensity-unit U]\n"
+      "      [--until T] [--out FILE.csv]   forks one branch per factor or hyetograph, runs them side by side\n"
+      "        and tabulates each branch's events (landslide onset, impact, wave at each gauge, overtopping)\n"
       "  help  this text\n",
       out);
 }

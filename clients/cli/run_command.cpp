@@ -180,10 +180,10 @@ void set_forcing(Engine& engine, const HydraulicForcing& next, const std::string
   engine.set_forcing(next);
 }
 
-// The case's rain series at the engine's time (a change applies at a step boundary), unless a
-// replayed journal has steered the intensity, which replaces the series.
-void apply_rain_series(const v1::ScenarioSpec& spec, Engine& engine, RunSummary& summary) {
-  const auto due = due_rain_change(spec, engine);
+// The case's rain at the engine's time (a change applies at a step boundary), as a replayed
+// journal has steered it (rain_series.h).
+void apply_case_rain(const v1::ScenarioSpec& spec, const CaseRain& rain, Engine& engine, RunSummary& summary) {
+  const auto due = rain.due(spec, engine);
   if (!due) return;
   HydraulicForcing next = engine.forcing();  // keeps whatever else the engine holds
   next.rainfall_intensity = *due;
@@ -211,9 +211,10 @@ class JournalReplay {
     }
   }
 
-  // Applies the changes due at the engine's step; false once the rain intensity has been steered.
-  // A hand-over leaves its stage change in the engine (Engine::take_stage_changes).
-  bool apply(Engine& engine, int dimensions, RunSummary& summary) {
+  // Applies the changes due at the engine's step, as the server did: a factor of the rain sets the
+  // intensity at once (Session::apply_forcing_change). A hand-over leaves its stage change in the
+  // engine (Engine::take_stage_changes).
+  void apply(const v1::ScenarioSpec& spec, Engine& engine, int dimensions, RunSummary& summary) {
     while (next_ < changes_.size() && changes_[next_].step() <= engine.step_count()) {
       const auto& entry = changes_[next_++];
       if (entry.step() < engine.step_count())
@@ -228,12 +229,14 @@ class JournalReplay {
         continue;
       }
       const std::vector<std::string> mask(entry.update_mask().begin(), entry.update_mask().end());
-      set_forcing(engine, updated_forcing(engine.forcing(), entry.new_forcing(), mask, dimensions),
-                  "replayed " + join(mask) + " from the journal", summary);
-      for (const auto& field : mask) intensity_steered_ |= field == "rainfall.intensity";
+      HydraulicForcing next = updated_forcing(engine.forcing(), entry.new_forcing(), mask, dimensions);
+      rain_.steer(mask, entry.new_forcing());
+      if (const auto due = rain_.due(spec, engine.time(), next.rainfall_intensity)) next.rainfall_intensity = *due;
+      set_forcing(engine, next, "replayed " + join(mask) + " from the journal", summary);
     }
-    return !intensity_steered_;
   }
+
+  const CaseRain& rain() const { return rain_; }
 
  private:
   static void check_forcing(const std::string& where, const v1::JournalEntry& entry) {
@@ -243,6 +246,7 @@ class JournalReplay {
     };
     for (const auto& field : entry.update_mask()) {
       if (field == "rainfall.intensity") check(field, kRainfallIntensity, f.rainfall().intensity());
+      if (field == "rainfall.factor") check(field, kRainFactor, f.rainfall().factor());
       if (field == "ponding.p_max") check(field, kSurfacePressure, f.ponding().p_max());
       if (field == "ponding.p_min" && f.ponding().has_p_min()) check(field, kSurfacePressure, f.ponding().p_min());
     }
@@ -256,7 +260,7 @@ class JournalReplay {
 
   std::vector<v1::JournalEntry> changes_;
   std::size_t next_ = 0;
-  bool intensity_steered_ = false;
+  CaseRain rain_;
 };
 
 }  // namespace
@@ -330,6 +334,7 @@ int run_command(const std::vector<std::string>& args) {
     }
     std::optional<JournalReplay> replay;
     if (!options.replay.empty()) replay.emplace(options.replay, spec.name());
+    const CaseRain unsteered;  // the case's rain as it is, without a journal
     Progress progress(end_time, stderr);
     const auto record = [&](const std::vector<CascadeEvent>& fired) {
       for (const CascadeEvent& e : fired) {
@@ -359,9 +364,9 @@ int run_command(const std::vector<std::string>& args) {
         throw SimulationFailure("interrupted by signal " + std::to_string(g_signal.load()) + " at t = " +
                                 std::to_string(engine->time()) + " s; outputs hold the run up to there");
       }
-      const bool series_applies = !replay || replay->apply(*engine, config.dimensions, summary);
+      if (replay) replay->apply(spec, *engine, config.dimensions, summary);
       record_stages();  // a replayed hand-over
-      if (series_applies) apply_rain_series(spec, *engine, summary);
+      apply_case_rain(spec, replay ? replay->rain() : unsteered, *engine, summary);
       engine->step();
       record_stages();
       record(outputs.observe(*engine, false));

@@ -11,9 +11,10 @@
 
 namespace cascade {
 
-// The field paths an update mask may name.
-inline const std::array<const char*, 4> kSteerableForcingFields = {"rainfall.intensity", "rainfall.region",
-                                                                   "ponding.p_max", "ponding.p_min"};
+// The field paths an update mask may name. rainfall.factor is not the engine's: CaseRain
+// (rain_series.h) turns it into the intensity.
+inline const std::array<const char*, 5> kSteerableForcingFields = {"rainfall.intensity", "rainfall.factor",
+                                                                   "rainfall.region", "ponding.p_max", "ponding.p_min"};
 
 v1::Forcing forcing_message(const HydraulicForcing& forcing, int dimensions);
 

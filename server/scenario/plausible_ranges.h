@@ -43,6 +43,9 @@ inline constexpr PlausibleRange kWaterBulkModulus{1e3, 1e10, "Pa", "2e6 (the pap
 // 1 m/s (K_sat × 100, the rain ten times that). The bound catches unit slips (1e10), not storms.
 inline constexpr PlausibleRange kRainfallIntensity{-1, 1, "m/s",
                                                    "the heaviest rain recorded is about 1e-4 m/s, accelerated runs 1"};
+// A factor on the case's rain (rainfall.factor, rain_series.h): what-if forecasts from none to a
+// hundred times the case's storm; beyond that the intensity itself is the thing to steer.
+inline constexpr PlausibleRange kRainFactor{0, 100, "times the case's rain", "a forecast from no rain to a hundred times the case's"};
 // The surface's ponding and drying pressures (p_max, p_min of Eq. 39): far beyond any head of
 // ponded water or any suction a soil holds (1 GPa).
 inline constexpr PlausibleRange kSurfacePressure{-1e8, 1e8, "Pa", "suctions and ponding heads lie well within 1e8"};

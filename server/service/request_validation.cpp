@@ -105,19 +105,26 @@ grpc::Status check_run_until(const v1::RunSimulationUntilRequest& request, doubl
 grpc::Status check_update_forcing(const v1::UpdateForcingRequest& request, const v1::Forcing& current,
                                   int dimensions, double end_time) {
   const auto& paths = request.update_mask().paths();
-  if (paths.empty()) return invalid("update_mask", "names no field (steerable: rainfall.intensity, rainfall.region, ponding.p_max, ponding.p_min)");
+  if (paths.empty()) return invalid("update_mask", "names no field (steerable: rainfall.intensity, rainfall.factor, rainfall.region, ponding.p_max, ponding.p_min)");
   bool p_max_set = false, p_min_set = false;
   for (int k = 0; k < paths.size(); ++k) {
     const std::string& path = paths[k];
     const std::string field = "update_mask.paths[" + std::to_string(k) + "]";
     if (std::find(kSteerableForcingFields.begin(), kSteerableForcingFields.end(), path) == kSteerableForcingFields.end())
-      return invalid(field, "'" + path.substr(0, 80) + "' is not steerable (rainfall.intensity, rainfall.region, ponding.p_max, ponding.p_min)");
+      return invalid(field, "'" + path.substr(0, 80) + "' is not steerable (rainfall.intensity, rainfall.factor, rainfall.region, ponding.p_max, ponding.p_min)");
     if (std::count(paths.begin(), paths.end(), path) > 1) return invalid(field, "'" + path + "' is named twice");
     const auto& f = request.forcing();
     if (path == "rainfall.intensity") {
       const double i = f.rainfall().intensity();
       if (!std::isfinite(i)) return invalid("forcing.rainfall.intensity", "is not a finite number");
       if (const auto message = implausible(kRainfallIntensity, i)) return invalid("forcing.rainfall.intensity", *message);
+    } else if (path == "rainfall.factor") {
+      if (std::count(paths.begin(), paths.end(), "rainfall.intensity") > 0)
+        return invalid(field, "rainfall.factor scales the case's rain and rainfall.intensity replaces it: not both");
+      if (!f.rainfall().has_factor()) return invalid("forcing.rainfall.factor", "is not set");
+      const double factor = f.rainfall().factor();
+      if (!std::isfinite(factor)) return invalid("forcing.rainfall.factor", "is not a finite number");
+      if (const auto message = implausible(kRainFactor, factor)) return invalid("forcing.rainfall.factor", *message);
     } else if (path == "rainfall.region" && f.rainfall().has_region()) {
       const auto status = check_box("forcing.rainfall.region", f.rainfall().region(), dimensions);
       if (!status.ok()) return status;
@@ -146,6 +153,21 @@ grpc::Status check_update_forcing(const v1::UpdateForcingRequest& request, const
       return invalid("effective_time", "must be in [0, end_time = " + number(end_time) + "] s, got " + number(t));
   }
   return grpc::Status::OK;
+}
+
+grpc::Status check_fork(const v1::ForkSimulationRequest& request, const v1::Forcing& current, int dimensions,
+                        double end_time) {
+  if (!request.simulation_id().empty())
+    if (auto status = check_simulation_id("simulation_id", request.simulation_id()); !status.ok()) return status;
+  if (request.update_mask().paths().empty()) {
+    if (request.forcing().ByteSizeLong() > 0) return invalid("update_mask", "names no field, so `forcing` would be ignored");
+    return grpc::Status::OK;
+  }
+  // UpdateForcing's checks, whose field names (forcing.*, update_mask.paths[k]) are this request's.
+  v1::UpdateForcingRequest change;
+  *change.mutable_forcing() = request.forcing();
+  *change.mutable_update_mask() = request.update_mask();
+  return check_update_forcing(change, current, dimensions, end_time);
 }
 
 grpc::Status check_advance_stage(const v1::AdvanceStageRequest& request) {

@@ -36,6 +36,10 @@ grpc::Status check_run_until(const v1::RunSimulationUntilRequest& request, doubl
 // `current`: the forcing now, for the p_min < p_max check of a change that names only one of them.
 grpc::Status check_update_forcing(const v1::UpdateForcingRequest& request, const v1::Forcing& current,
                                   int dimensions, double end_time);
+// The fork's id (optional) and its forcing change, as check_update_forcing's without a time; a
+// forcing without a mask is refused, since it would be ignored.
+grpc::Status check_fork(const v1::ForkSimulationRequest& request, const v1::Forcing& current, int dimensions,
+                        double end_time);
 // `reason`: at most kMaxReasonBytes, no control characters (it goes into one journal line and the
 // events that clients print a line each).
 grpc::Status check_advance_stage(const v1::AdvanceStageRequest& request);

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "server/core/free_cores.h"
 #include "server/scenario/engine_setup.h"
@@ -73,7 +74,9 @@ struct Session::ScheduledForcing {
 };
 
 struct Session::Command {
-  enum class Kind { start, pause, resume, step, run_until, update_forcing, advance_stage, query, tap_frames, checkpoint };
+  enum class Kind {
+    start, pause, resume, step, run_until, update_forcing, advance_stage, query, tap_frames, checkpoint, fork
+  };
   Kind kind;
   std::string caller;
   std::uint64_t steps = 0;
@@ -84,26 +87,42 @@ struct Session::Command {
   FrameDone frame_done;
   std::weak_ptr<FrameTap> tap;
   CheckpointDone checkpoint_done;
-  std::string reason;  // advance_stage
+  std::string reason;  // advance_stage; fork: the fork's name
+  ForkDone fork_done;
 };
 
 Session::Session(SessionConfig config)
-    : config_(std::move(config)),
+    : restore_source_(std::exchange(config.restore, nullptr)),
+      config_(std::move(config)),
       probe_names_(names_of_probes(config_.spec)),
       stage_names_(names_of_stages(config_.spec)) {
   status_.set_state(v1::Simulation::CREATED);
   status_.set_stage_name(stage_names_.front());
   forcing_ = forcing_message(config_.engine.forcing, config_.engine.dimensions);
-  if (config_.restore) {  // published at once: the reply to RestoreCheckpoint shows where it is
-    const EngineState& restored = config_.restore->checkpoint.engine;
+  if (restore_source_) {  // published at once: the reply to RestoreCheckpoint shows where it is
     state_ = v1::Simulation::PAUSED;
     status_.set_state(state_);
-    status_.set_time(restored.time);
-    status_.set_step(restored.steps);
-    status_.set_dt(restored.last_dt);
-    status_.set_stage(std::uint32_t(restored.stage));
-    status_.set_stage_name(stage_names_.at(std::size_t(restored.stage)));
-    forcing_ = forcing_message(restored.forcing, config_.engine.dimensions);
+    if (const Engine* fork = restore_source_->engine.get()) {
+      status_.set_time(fork->time());
+      status_.set_step(fork->step_count());
+      status_.set_dt(fork->last_dt());
+      status_.set_stage(std::uint32_t(fork->stage()));
+      status_.set_stage_name(stage_names_.at(std::size_t(fork->stage())));
+      forcing_ = forcing_message(fork->forcing(), config_.engine.dimensions);
+    } else {
+      const EngineState& restored = restore_source_->checkpoint.engine;
+      status_.set_time(restored.time);
+      status_.set_step(restored.steps);
+      status_.set_dt(restored.last_dt);
+      status_.set_stage(std::uint32_t(restored.stage));
+      status_.set_stage_name(stage_names_.at(std::size_t(restored.stage)));
+      forcing_ = forcing_message(restored.forcing, config_.engine.dimensions);
+    }
+    if (const auto& fork = restore_source_->fork) {  // a fork goes on from its parent's history
+      events_ = fork->events;
+      probe_samples_ = fork->probe_samples;
+      forcing_ = fork->forcing;
+    }
   }
   thread_ = std::thread([this] { run_loop(); });
 }
@@ -125,6 +144,7 @@ void Session::enqueue(Command command) {
   if (command.done) command.done({gone, 0, 0});
   if (command.frame_done) command.frame_done(gone, nullptr);
   if (command.checkpoint_done) command.checkpoint_done(gone, {});
+  if (command.fork_done) command.fork_done(gone, nullptr);
 }
 
 void Session::start(const std::string& caller, Done done) {
@@ -166,6 +186,13 @@ void Session::checkpoint(const std::string& caller, CheckpointDone done) {
   enqueue(std::move(command));
 }
 
+void Session::fork(const std::string& fork_name, const std::string& caller, ForkDone done) {
+  Command command{Command::Kind::fork, caller, 0, 0, {}, {}, {}, {}};
+  command.reason = fork_name;
+  command.fork_done = std::move(done);
+  enqueue(std::move(command));
+}
+
 void Session::stop(const std::string& reason, const std::string& caller, bool checkpoint_first) {
   {
     std::lock_guard lock(mutex_);
@@ -186,7 +213,7 @@ v1::Simulation Session::describe() const {
   s.set_name(config_.name);
   s.set_case_name(config_.spec.name());
   s.set_end_time(config_.spec.end_time());
-  s.set_particle_count(config_.particles.size());
+  s.set_particle_count(config_.particles->size());
   s.set_device(config_.engine.device == Device::cuda ? "cuda" : "cpu");
   s.set_journal_path((config_.directory / "journal.jsonl").string());
   std::lock_guard lock(mutex_);
@@ -269,6 +296,7 @@ void Session::run_loop() {
         if (command.done) command.done(here(failed));
         if (command.frame_done) command.frame_done(failed, nullptr);
         if (command.checkpoint_done) command.checkpoint_done(failed, {});
+        if (command.fork_done) command.fork_done(failed, nullptr);
       }
     }
     if (state_ != v1::Simulation::RUNNING || stop_requested_) continue;
@@ -307,6 +335,7 @@ void Session::run_loop() {
     if (command.done) command.done(here(refused));
     if (command.frame_done) command.frame_done(refused, nullptr);
     if (command.checkpoint_done) command.checkpoint_done(refused, {});
+    if (command.fork_done) command.fork_done(refused, nullptr);
   }
   for (auto& change : scheduled_) change.done(here(refused));
   for (auto& waiter : target_waiters_) waiter(here());
@@ -315,7 +344,7 @@ void Session::run_loop() {
 }
 
 void Session::initialise() {
-  if (config_.restore) return restore();
+  if (restore_source_) return restore();
   try {
     journal_ = std::make_unique<JournalWriter>(config_.directory / "journal.jsonl");
     v1::JournalEntry entry;
@@ -323,7 +352,7 @@ void Session::initialise() {
     entry.set_caller(config_.caller);
     entry.set_case_name(config_.spec.name());
     journal(std::move(entry));
-    engine_ = make_case_engine(config_.spec, config_.engine, config_.particles, config_.make_engine);
+    engine_ = make_case_engine(config_.spec, config_.engine, *config_.particles, config_.make_engine);
     probes_ = std::make_unique<ProbeSampler>(config_.spec, config_.engine.h,
                                              config_.engine.water_density * std::pow(config_.engine.dp, config_.engine.dimensions));
     cascade_events_ = std::make_unique<CascadeEventDetector>(config_.spec, config_.engine.h, probes_->names());
@@ -460,16 +489,20 @@ void Session::apply(Command& c) {
       if (auto tap = c.tap.lock()) tap->take_frame(std::make_shared<const FieldFrame>(engine_->frame()));
       frame_taps_.push_back(std::move(c.tap));
       return;
-    case Command::Kind::checkpoint: {
+    case Command::Kind::checkpoint:
+    case Command::Kind::fork: {
       std::unique_lock lock(mutex_);
       if (!engine_ || state_ == v1::Simulation::FAILED) {
-        const std::string why = config_.name + " has failed (" + failure_reason_ + "): its state cannot be continued";
+        const grpc::Status failed(grpc::StatusCode::FAILED_PRECONDITION,
+                                  config_.name + " has failed (" + failure_reason_ + "): its state cannot be continued");
         lock.unlock();
-        c.checkpoint_done({grpc::StatusCode::FAILED_PRECONDITION, why}, {});
+        if (c.checkpoint_done) c.checkpoint_done(failed, {});
+        if (c.fork_done) c.fork_done(failed, nullptr);
         return;
       }
       lock.unlock();
-      c.checkpoint_done(grpc::Status::OK, take_checkpoint(c.caller));
+      if (c.kind == Command::Kind::checkpoint) c.checkpoint_done(grpc::Status::OK, take_checkpoint(c.caller));
+      else c.fork_done(grpc::Status::OK, take_fork(c.reason, c.caller));
       return;
     }
   }
@@ -478,17 +511,17 @@ void Session::apply(Command& c) {
 void Session::apply_forcing_change(const ScheduledForcing& change) {
   const HydraulicForcing old_forcing = engine_->forcing();
   const int dims = config_.engine.dimensions;
-  const HydraulicForcing new_forcing = updated_forcing(old_forcing, change.forcing, change.mask, dims);
+  HydraulicForcing new_forcing = updated_forcing(old_forcing, change.forcing, change.mask, dims);
   v1::JournalEntry entry;
   entry.set_command("update_forcing");
   entry.set_caller(change.caller);
-  for (const auto& field : change.mask) {
-    entry.add_update_mask(field);
-    intensity_steered_ |= field == "rainfall.intensity";
-  }
-  *entry.mutable_old_forcing() = forcing_message(old_forcing, dims);
-  *entry.mutable_new_forcing() = forcing_message(new_forcing, dims);
+  for (const auto& field : change.mask) entry.add_update_mask(field);
+  *entry.mutable_old_forcing() = forcing_now();
+  rain_.steer(change.mask, change.forcing);  // a factor sets the intensity at once
+  if (const auto due = rain_.due(config_.spec, engine_->time(), new_forcing.rainfall_intensity))
+    new_forcing.rainfall_intensity = *due;
   engine_->set_forcing(new_forcing);
+  *entry.mutable_new_forcing() = forcing_now();
   journal(entry);
   {
     std::lock_guard lock(mutex_);
@@ -501,6 +534,12 @@ void Session::apply_forcing_change(const ScheduledForcing& change) {
   change.done(here());
 }
 
+v1::Forcing Session::forcing_now() const {
+  v1::Forcing forcing = forcing_message(engine_->forcing(), config_.engine.dimensions);
+  if (const auto factor = rain_.factor()) forcing.mutable_rainfall()->set_factor(*factor);
+  return forcing;
+}
+
 void Session::advance() {
   // Scheduled forcing changes that are due, in their order of arrival.
   for (auto it = scheduled_.begin(); it != scheduled_.end();) {
@@ -511,19 +550,18 @@ void Session::advance() {
       ++it;
     }
   }
-  if (!intensity_steered_) {
-    if (const auto due = due_rain_change(config_.spec, *engine_)) {
-      HydraulicForcing next = engine_->forcing();
-      next.rainfall_intensity = *due;
-      engine_->set_forcing(next);
-      {
-        std::lock_guard lock(mutex_);
-        forcing_ = forcing_message(next, config_.engine.dimensions);
-      }
-      add_event("forcing",
-                "rain series: rainfall.intensity " + std::to_string(*due) + " m/s" + rain_series_origin(config_.spec),
-                "case");
+  if (const auto due = rain_.due(config_.spec, *engine_)) {
+    HydraulicForcing next = engine_->forcing();
+    next.rainfall_intensity = *due;
+    engine_->set_forcing(next);
+    {
+      std::lock_guard lock(mutex_);
+      forcing_ = forcing_now();
     }
+    add_event("forcing",
+              "rain series: rainfall.intensity " + std::to_string(*due) + " m/s" + rain_series_origin(config_.spec) +
+                  (rain_.factor() ? " (factor " + exact_text(*rain_.factor()) + ")" : ""),
+              "case");
   }
   try {
     engine_->step();
@@ -666,7 +704,7 @@ void Session::sample_outputs(bool force) {
 // The engine keeps the account where its particles are (a copy from the device): read with the
 // kinetic energy, at a forced sample and at a change of state, not after every step.
 void Session::refresh_pore_water() {
-  if (engine_ && config_.particles.count(Phase::soil) > 0) pore_water_ = engine_->pore_water_account();
+  if (engine_ && config_.particles->count(Phase::soil) > 0) pore_water_ = engine_->pore_water_account();
 }
 
 void Session::publish_status(bool wait) {
@@ -685,7 +723,7 @@ void Session::publish_status(bool wait) {
     status_.set_dt(engine_->last_dt());
     status_.set_stage(std::uint32_t(engine_->stage()));
     status_.set_stage_name(stage_names_.at(std::size_t(engine_->stage())));
-    if (config_.particles.count(Phase::soil) > 0) {  // the pore water's account, for a case with soil
+    if (config_.particles->count(Phase::soil) > 0) {  // the pore water's account, for a case with soil
       if (wait) refresh_pore_water();
       v1::PoreWaterAccount& pore_water = *status_.mutable_pore_water();
       pore_water.set_rain(pore_water_.rain);

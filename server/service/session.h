@@ -29,22 +29,41 @@
 #include "server/io/journal.h"
 #include "server/io/probe_sampler.h"
 #include "server/scenario/cascade_events.h"
+#include "server/scenario/rain_series.h"
 #include "server/service/frame_tap.h"
 
 namespace cascade::service {
 
 using EngineFactory = std::function<std::unique_ptr<Engine>(const EngineConfig&, const HostParticles&)>;
 
-// A checkpoint to start from instead of the case's initial state (RestoreCheckpoint).
+// What a fork takes from its parent besides the checkpoint: the run so far as clients saw it, so
+// that the fork's events and probes go on from the parent's, and no cascade event fires twice.
+struct ForkHistory {
+  std::string parent;  // simulations/{id}
+  std::vector<v1::Event> events;
+  std::vector<v1::ProbeSample> probe_samples;
+  CascadeEventDetector cascade_events;
+  double next_probe_time = 0;
+  double kinetic_energy = 0, max_soil_speed = 0;  // as last sampled
+  PoreWaterAccount pore_water;
+  v1::Forcing forcing;  // with the rain's factor, which the fork's solver thread finds in the journal
+};
+
+// A checkpoint to start from instead of the case's initial state: RestoreCheckpoint's file, or a
+// fork of a running session (ForkSimulation: `engine` is the parent's clone, `checkpoint` has the
+// journal but no engine state, `fork` the history).
 struct RestoreSource {
-  std::string checkpoint_name;  // simulations/{id}/checkpoints/{checkpoint_id}
+  std::string checkpoint_name;  // simulations/{id}/checkpoints/{checkpoint_id}; a fork: its parent at step N
   Checkpoint checkpoint;
+  std::unique_ptr<Engine> engine;
+  std::optional<ForkHistory> fork;
 };
 
 struct SessionConfig {
   std::string name;                  // simulations/{id}
   v1::ScenarioSpec spec;             // defaults applied
-  HostParticles particles;           // the initial state
+  // The initial state; a fork shares its parent's (the engine's state is what it copies).
+  std::shared_ptr<const HostParticles> particles;
   EngineConfig engine;               // from engine_config(spec, particles, ...)
   EngineFactory make_engine;         // run on the solver thread
   std::filesystem::path directory;   // holds journal.jsonl
@@ -53,7 +72,7 @@ struct SessionConfig {
   // Set: the engine takes the checkpoint's state (no initialisation stage), journal.jsonl becomes
   // the checkpoint's journal (the one it replaces is kept as journal.jsonl.replaced-N) and the
   // simulation is PAUSED there.
-  std::shared_ptr<const RestoreSource> restore;
+  std::shared_ptr<RestoreSource> restore;
 };
 
 class Session {
@@ -71,6 +90,9 @@ class Session {
   using FrameDone = std::function<void(const grpc::Status&, std::shared_ptr<const FieldFrame>)>;
   // A checkpoint written at a step boundary: its file (empty with a failed status).
   using CheckpointDone = std::function<void(const grpc::Status&, const std::filesystem::path&)>;
+  // A fork's source taken at a step boundary (null with a failed status): the state, the journal
+  // up to and with the parent's `fork` entry, and the history clients saw.
+  using ForkDone = std::function<void(const grpc::Status&, std::shared_ptr<RestoreSource>)>;
 
   // Starts the solver thread, which builds the engine and runs the case's initialisation stage.
   explicit Session(SessionConfig config);
@@ -98,6 +120,9 @@ class Session {
   // Writes a checkpoint (checkpoint_store.h) at the next step boundary; a running simulation goes
   // on after it. FAILED_PRECONDITION for a FAILED simulation, whose state holds the failure.
   void checkpoint(const std::string& caller, CheckpointDone done);
+  // Takes a fork's source at the next step boundary and journals `fork` with the fork's name; a
+  // running simulation goes on after it. FAILED_PRECONDITION for a FAILED simulation.
+  void fork(const std::string& fork_name, const std::string& caller, ForkDone done);
 
   // Ends the solver thread at the next step boundary (a running simulation pauses there), writes
   // `reason` (shutdown, delete, restore) to the journal and refuses what is still queued; with
@@ -106,7 +131,8 @@ class Session {
 
   const std::string& name() const { return config_.name; }
   const v1::ScenarioSpec& spec() const { return config_.spec; }
-  std::size_t particle_count() const { return config_.particles.size(); }
+  std::size_t particle_count() const { return config_.particles->size(); }
+  const SessionConfig& config() const { return config_; }
 
   v1::Simulation describe() const;
   v1::Status status() const;
@@ -123,10 +149,13 @@ class Session {
   void enqueue(Command command);
   void run_loop();
   void initialise();
-  void restore();  // initialise() from config_.restore
+  void restore();  // initialise() from restore_source_
   std::filesystem::path take_checkpoint(const std::string& caller);
+  Checkpoint checkpoint_here(bool with_engine_state);  // the spec, journal (and state) at this step boundary
+  std::shared_ptr<RestoreSource> take_fork(const std::string& fork_name, const std::string& caller);
   void apply(Command& command);
   void apply_forcing_change(const ScheduledForcing& change);
+  v1::Forcing forcing_now() const;  // the engine's forcing with the rain's factor
   void advance();  // one step while running, with everything that follows it
   void reach_targets();
   void stop_running(v1::Simulation::State state, const std::string& reason);
@@ -141,6 +170,10 @@ class Session {
   bool transition(const Done& done, std::initializer_list<v1::Simulation::State> from, const char* command);
   Outcome here(grpc::Status status = grpc::Status::OK) const;
 
+  // SessionConfig::restore, taken out of the config and dropped once the engine has its state:
+  // the checkpoint's arrays would otherwise stay as a second copy of the state for the session's
+  // life. Declared before config_, which is built after it.
+  std::shared_ptr<RestoreSource> restore_source_;
   const SessionConfig config_;
   const std::vector<std::string> probe_names_;
   const std::vector<std::string> stage_names_;  // by index; one "dynamic" for a case without stages
@@ -170,7 +203,7 @@ class Session {
   std::optional<double> stop_time_;
   std::vector<Done> target_waiters_;
   std::vector<std::weak_ptr<FrameTap>> frame_taps_;
-  bool intensity_steered_ = false;  // the steered intensity replaces the case's rain series
+  CaseRain rain_;  // the case's rain and the operator's steering of it
   double next_probe_time_ = 0;
   double last_energy_wall_ = 0;
   double rate_wall_ = 0;

@@ -110,8 +110,8 @@ SessionConfig SimulationService::session_config(const std::string& id, v1::Scena
                                               const std::string& caller) const {
   SessionConfig session;
   session.name = kNamePrefix + id;
-  session.particles = build_particle_set(spec).particles;
-  session.engine = engine_config(spec, session.particles, options_.precision, options_.device);
+  session.particles = std::make_shared<const HostParticles>(build_particle_set(spec).particles);
+  session.engine = engine_config(spec, *session.particles, options_.precision, options_.device);
   session.spec = std::move(spec);
   session.make_engine = options_.make_engine ? options_.make_engine : EngineFactory(&cascade::make_engine);
   session.directory = options_.data_dir / "simulations" / id;
@@ -158,9 +158,9 @@ grpc::Status SimulationService::create(const grpc::CallbackServerContext& contex
   } catch (const CaseError& e) {
     return invalid(request.has_spec() ? "spec" : "case_yaml", e.what());
   }
-  if (session.particles.size() > options_.max_particles)
+  if (session.particles->size() > options_.max_particles)
     return {grpc::StatusCode::RESOURCE_EXHAUSTED,
-            "particles: the case has " + std::to_string(session.particles.size()) + ", the server takes at most " +
+            "particles: the case has " + std::to_string(session.particles->size()) + ", the server takes at most " +
                 std::to_string(options_.max_particles) + " (--max-particles)"};
 
   std::lock_guard lock(mutex_);

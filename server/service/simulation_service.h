@@ -96,6 +96,8 @@ class SimulationService final : public v1::SimulationService::CallbackService {
   grpc::ServerUnaryReactor* RestoreCheckpoint(grpc::CallbackServerContext* context,
                                               const v1::RestoreCheckpointRequest* request,
                                               v1::Simulation* response) override;
+  grpc::ServerUnaryReactor* ForkSimulation(grpc::CallbackServerContext* context, const v1::ForkSimulationRequest* request,
+                                           v1::Simulation* response) override;
 
  private:
   // Authorises the caller, then refuses a request with fields this server does not know
@@ -114,6 +116,11 @@ class SimulationService final : public v1::SimulationService::CallbackService {
   grpc::Status create(const grpc::CallbackServerContext& context, const v1::CreateSimulationRequest& request,
                       v1::Simulation& response);
   std::string new_id() const;  // under mutex_
+  // ForkSimulation's second half, on the parent's solver thread: the fork's session from `source`
+  // under the reserved id, its forcing change queued; `finish` replies.
+  void start_fork(const std::string& id, const Session& parent, std::shared_ptr<RestoreSource> source,
+                  const v1::ForkSimulationRequest& request, const std::string& caller,
+                  std::function<void(const grpc::Status&, const v1::Simulation&)> finish);
   grpc::Status restore(const grpc::CallbackServerContext& context, const v1::RestoreCheckpointRequest& request,
                        v1::Simulation& response);
   // The session of a simulation's engine from its spec, as CreateSimulation and RestoreCheckpoint

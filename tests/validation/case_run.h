@@ -38,7 +38,7 @@ struct CaseRun {
   // One step, after the case's rain series (hydraulics.rainfall) has set the intensity due at the
   // engine's time, as the runner and the server apply it (server/scenario/rain_series.h).
   void step() {
-    if (const auto due = due_rain_change(spec, *engine)) {
+    if (const auto due = CaseRain{}.due(spec, *engine)) {
       HydraulicForcing next = engine->forcing();
       next.rainfall_intensity = *due;
       engine->set_forcing(next);

@@ -78,6 +78,31 @@ class Client:
         self.close()
 
 
+def forcing_change(fields):
+    """(Forcing, mask paths) from keywords named as the mask paths with '__' for '.'."""
+    forcing = journal_pb2.Forcing()
+    paths = []
+    for key, value in fields.items():
+        path = key.replace("__", ".")
+        paths.append(path)
+        if path == "rainfall.intensity":
+            forcing.rainfall.intensity = value
+        elif path == "rainfall.factor":
+            forcing.rainfall.factor = value
+        elif path == "ponding.p_max":
+            forcing.ponding.p_max = value
+        elif path == "ponding.p_min":
+            if value is not None:
+                forcing.ponding.p_min = value
+        elif path == "rainfall.region":
+            if value is not None:
+                forcing.rainfall.region.min[:] = value[0]
+                forcing.rainfall.region.max[:] = value[1]
+        else:
+            raise ValueError(f"{path} is not steerable")
+    return forcing, paths
+
+
 class Simulation:
     """One simulation on the server, by name (simulations/{id})."""
 
@@ -109,30 +134,25 @@ class Simulation:
 
     def update_forcing(self, effective_time=None, **fields):
         """Steers the forcing: keyword names are the mask paths with '__' for '.', e.g.
-        rainfall__intensity=1e-5, ponding__p_max=0, ponding__p_min=None (no limit)."""
-        forcing = journal_pb2.Forcing()
-        paths = []
-        for key, value in fields.items():
-            path = key.replace("__", ".")
-            paths.append(path)
-            if path == "rainfall.intensity":
-                forcing.rainfall.intensity = value
-            elif path == "ponding.p_max":
-                forcing.ponding.p_max = value
-            elif path == "ponding.p_min":
-                if value is not None:
-                    forcing.ponding.p_min = value
-            elif path == "rainfall.region":
-                if value is not None:
-                    forcing.rainfall.region.min[:] = value[0]
-                    forcing.rainfall.region.max[:] = value[1]
-            else:
-                raise ValueError(f"{path} is not steerable")
+        rainfall__intensity=1e-5, rainfall__factor=2 (the case's rain, series or constant, times
+        2), ponding__p_max=0, ponding__p_min=None (no limit)."""
+        forcing, paths = forcing_change(fields)
         request = pb.UpdateForcingRequest(name=self.name, forcing=forcing,
                                           update_mask=field_mask_pb2.FieldMask(paths=paths))
         if effective_time is not None:
             request.effective_time = effective_time
         return self.client.call("UpdateForcing", request)
+
+    def fork(self, simulation_id="", **fields):
+        """A what-if branch: a new simulation with this one's state at its next step boundary, bit
+        for bit, PAUSED there, with the forcing changes of update_forcing's keywords applied before
+        its first step; this one goes on as it was. Returns the fork's Simulation (.name)."""
+        request = pb.ForkSimulationRequest(name=self.name, simulation_id=simulation_id)
+        if fields:
+            forcing, paths = forcing_change(fields)
+            request.forcing.CopyFrom(forcing)
+            request.update_mask.paths[:] = paths
+        return self.client.call("ForkSimulation", request)
 
     def set_rainfall(self, intensity, effective_time=None):
         """Rainfall intensity (m/s) from the next step boundary (or `effective_time`); the reply
