@@ -1,8 +1,8 @@
 // SimulationService::ForkSimulation: a what-if branch of a simulation. The parent takes the fork's
-// source at its next step boundary (Session::fork: the engine's state, the spec, the journal so far
-// and the history clients saw); the fork is then a session restored from it in memory, PAUSED at
-// that step, under an id reserved before the parent was asked, with its forcing change queued
-// first so that it applies before the fork's first step. Its journal is the parent's up to the
+// source at its next step boundary (Session::fork: a clone of its engine, the journal so far and
+// the history clients saw); the fork is then a session that starts from it, PAUSED at that step,
+// under an id reserved before the parent was asked, with its forcing change queued first so that
+// it applies before the fork's first step. Its journal is the parent's up to the
 // fork, then its own: `cascade run CASE --replay` of it repeats the fork.
 #include <filesystem>
 #include <optional>
@@ -14,7 +14,7 @@ namespace cascade::service {
 
 namespace {
 
-const std::string kFork = "simulations/";
+const std::string kNamePrefix = "simulations/";
 
 }  // namespace
 
@@ -61,7 +61,7 @@ grpc::ServerUnaryReactor* SimulationService::ForkSimulation(grpc::CallbackServer
     if (status.ok()) *response = fork;
     reactor->Finish(status);
   };
-  parent->fork(kFork + id, caller.name,
+  parent->fork(kNamePrefix + id, caller.name,
                [this, id, parent_raw, checked, caller = caller.name, finish](const grpc::Status& status,
                                                                              std::shared_ptr<RestoreSource> source) {
                  if (!status.ok()) {
@@ -78,7 +78,7 @@ void SimulationService::start_fork(const std::string& id, const Session& parent,
                                    const v1::ForkSimulationRequest& request, const std::string& caller,
                                    std::function<void(const grpc::Status&, const v1::Simulation&)> finish) {
   SessionConfig config = parent.config();  // spec, engine and the shared initial particles
-  config.name = kFork + id;
+  config.name = kNamePrefix + id;
   config.directory = options_.data_dir / "simulations" / id;
   config.caller = caller;
   config.restore = std::move(source);

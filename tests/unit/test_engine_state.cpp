@@ -47,6 +47,14 @@ void expect_same_frames(const FieldFrame& a, const FieldFrame& b) {
     EXPECT_TRUE(same_bits(a.fields[k].values, b.fields[k].values)) << a.fields[k].name;
 }
 
+// Whether some position or field differs: a bit-identity check after steps is then not one of two
+// unchanged states (a rigid column keeps its positions; its pore pressure moves).
+bool frames_differ(const FieldFrame& a, const FieldFrame& b) {
+  bool differ = !same_bits(a.position, b.position);
+  for (std::size_t k = 0; k < a.fields.size(); ++k) differ = differ || !same_bits(a.fields[k].values, b.fields[k].values);
+  return differ;
+}
+
 // Runs `before` steps, takes the state, runs `after` more; a second engine restored from the state
 // runs the same `after` steps. The state goes through a checkpoint file and back.
 void expect_restore_continues_bit_identically(const Case& c, int before, int after) {
@@ -78,13 +86,7 @@ void expect_restore_continues_bit_identically(const Case& c, int before, int aft
   EXPECT_EQ(a.rain, b.rain);
   EXPECT_EQ(a.walls, b.walls);
   EXPECT_EQ(a.surface, b.surface);
-  // The steps after the state changed it: the comparison above is not of two unchanged states
-  // (a rigid column keeps its positions; its pore pressure moves).
-  const FieldFrame at_end = original->frame();
-  bool changed = !same_bits(at_state.position, at_end.position);
-  for (std::size_t k = 0; k < at_end.fields.size(); ++k)
-    changed = changed || !same_bits(at_state.fields[k].values, at_end.fields[k].values);
-  EXPECT_TRUE(changed);
+  EXPECT_TRUE(frames_differ(at_state, original->frame()));
 }
 
 TEST(EngineState, SoilUnderWaterContinuesBitIdentically) {
@@ -120,11 +122,7 @@ void expect_clone_continues_bit_identically(const Case& c, int before, int after
   expect_same_frames(clone->frame(), original->frame());
   EXPECT_EQ(clone->last_dt(), original->last_dt());
   EXPECT_EQ(clone->pore_water_account().rain, original->pore_water_account().rain);
-  const FieldFrame at_end = original->frame();
-  bool changed = !same_bits(at_clone.position, at_end.position);
-  for (std::size_t k = 0; k < at_end.fields.size(); ++k)
-    changed = changed || !same_bits(at_clone.fields[k].values, at_end.fields[k].values);
-  EXPECT_TRUE(changed);
+  EXPECT_TRUE(frames_differ(at_clone, original->frame()));
 }
 
 TEST(EngineState, CloneOfSoilUnderWaterContinuesBitIdentically) {

@@ -12,6 +12,7 @@
     png = sim.snapshot(field="pore_pressure", phase="soil", width=640, height=360)   # PNG bytes
     for frame in sim.snapshots(every_wall_seconds=1, field="velocity"):   # SnapshotImage
         open(f"{frame.step}.png", "wb").write(frame.png)
+    branch = client.simulation(sim.fork(rainfall__factor=2).name)   # what if the rain doubles?
 
 The generated stubs (cascade/v1/*_pb2.py) come from the build tree: put <build>/python on
 PYTHONPATH beside this package's folder. Errors raise grpc.RpcError, whose .code() and
