@@ -102,6 +102,36 @@ class ForkWithoutChange(unittest.TestCase):
         self.assertEqual(branch[k + 1:], [("step", str(AFTER), FORK_STEP)])
 
 
+class ForkOfRunningSimulation(unittest.TestCase):
+    """Forked while it runs: the parent goes on running to its end, the fork starts PAUSED at the
+    step where the parent took it, and resumed to the end it ends with the parent's bits."""
+
+    def test_the_running_parent_goes_on_and_the_fork_ends_as_it_does(self):
+        with clitest.Server("running_fork") as server:
+            # 3,000 steps of 2 s: long enough that the fork lands while the parent runs.
+            assert server.cli("create", clitest.fixture("rain_column"), "--set", "end_time=6000", "--id",
+                              "parent").returncode == 0
+            assert server.cli("start", "parent").returncode == 0
+            p = server.cli("fork", "parent", "--id", "branch", "--json")
+            self.assertEqual(p.returncode, 0, p.stderr)
+            fork = json.loads(p.stdout)
+            self.assertEqual(fork["state"], "PAUSED")
+            step = int(fork["status"].get("step", 0))
+            assert server.cli("resume", "branch").returncode == 0
+            for sim in ("parent", "branch"):
+                assert server.cli("watch", sim, "--interval", "0.1").returncode == 0  # to the end
+            ends = {sim: json.loads(server.cli("get", sim, "--json").stdout) for sim in ("parent", "branch")}
+            frames = {sim: query(server, sim, clitest.WORK_DIR / f"running_{sim}.h5", "pore_pressure")[0]
+                      for sim in ("parent", "branch")}
+            parent_journal = journal(ends["parent"]["journal_path"])
+        self.assertEqual([e["state"] for e in ends.values()], ["COMPLETED", "COMPLETED"])
+        # The parent journaled the fork while running, at the fork's step.
+        forks = [e for e in parent_journal if e["command"] == "fork"]
+        self.assertEqual([(e["detail"], int(e.get("step", 0))) for e in forks], [("simulations/branch", step)])
+        self.assertLess(step, 3000)  # taken before the end
+        self.assertEqual(frames["branch"]["pore_pressure"].tobytes(), frames["parent"]["pore_pressure"].tobytes())
+
+
 class ForkOfStagedRun(unittest.TestCase):
     """A fork in the implicit pore-water stage (tests/cli/fixtures/staged_column.yaml): the stage,
     its next step and the hand-over to the dynamic stage go on as in the parent and in a run that
