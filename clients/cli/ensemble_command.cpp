@@ -93,19 +93,23 @@ bool fork_branch(Remote& remote, const v1::Simulation& parent, Branch& branch) {
 // A branch to `end`: a hyetograph's later rows each applied at the first step boundary at or
 // after its time (as a scheduled UpdateForcing would be), by running to that time and then
 // changing the rain, so that nothing depends on when a request arrives.
-void run_branch(Remote& remote, Branch& branch, double end) {
+// With `stop`, each run ends early STOP seconds after the branch's first event of its kind (the
+// server's RunSimulationUntil.stop_after_event), and the branch goes no further.
+void run_branch(Remote& remote, Branch& branch, double end, const std::optional<v1::EventStop>& stop) {
   using Stub = v1::SimulationService::Stub;
   const auto run_until = [&](double time) {
     if (!(time > branch.simulation.status().time())) return true;
     v1::RunSimulationUntilRequest request;
     request.set_name(branch.simulation.name());
     request.set_time(time);
+    if (stop) *request.mutable_stop_after_event() = *stop;
     return call(remote, &Stub::RunSimulationUntil, request, branch.simulation) &&
-           branch.simulation.state() == v1::Simulation::PAUSED;
+           branch.simulation.state() == v1::Simulation::PAUSED && branch.simulation.status().time() >= time;
   };
   for (const auto& row : branch.hyetograph) {
     if (row.time() <= branch.simulation.status().time()) continue;
-    if (row.time() >= end || !run_until(row.time())) break;
+    if (row.time() >= end) break;
+    if (!run_until(row.time())) return;  // ended, failed, or stopped after its event
     v1::UpdateForcingRequest change;
     change.set_name(branch.simulation.name());
     change.mutable_forcing()->mutable_rainfall()->set_intensity(row.intensity());
@@ -188,7 +192,8 @@ int ensemble(Remote& remote) {
   // Side by side: one RunSimulationUntil per branch, each on its own thread (the server shares the
   // cores among the simulations that step).
   std::vector<std::thread> runs;
-  for (auto& b : branches) runs.emplace_back([&remote, &b, end] { run_branch(remote, b, end); });
+  const std::optional<v1::EventStop> stop = event_stop(remote.args());
+  for (auto& b : branches) runs.emplace_back([&remote, &b, end, &stop] { run_branch(remote, b, end, stop); });
   for (auto& t : runs) t.join();
 
   std::vector<Outcome> outcomes;

@@ -24,7 +24,7 @@ void print_usage(std::FILE* out) {
       "on a server (--server ADDR, default $CASCADE_SERVER or 127.0.0.1:50051; --token T; --tls-ca F; --json):\n"
       "  create CASE.yaml [--set key=value]... [--id ID]\n"
       "  list | get SIM | start SIM | pause SIM | resume SIM | delete SIM\n"
-      "  step SIM N | run-until SIM T\n"
+      "  step SIM N | run-until SIM T [--stop-after KIND[:S]]   (S seconds after the first cascade event KIND)\n"
       "  set SIM KEY=VALUE... [--at T]     rainfall.intensity, ponding.p_max, ponding.p_min (none: no limit),\n"
       "        rainfall.factor=F (the case's rain, series or constant, times F), rainfall.region=X0,Z0,X1,Z1\n"
       "        (3D: X0,Y0,Z0,X1,Y1,Z1; none: everywhere)\n"
@@ -41,8 +41,9 @@ void print_usage(std::FILE* out) {
       "  checkpoint SIM | checkpoints SIM | restore SIM CHECKPOINT   (ckpt-NNNN or its full name)\n"      "  fork SIM [KEY=VALUE]... [--id ID]   a what-if branch with SIM's state at its next step boundary,\n"
       "        paused there, with the forcing changes of `set`; SIM goes on as it was\n"
       "  ensemble SIM (--rain-factors F,F,... | --hyetograph FILE...) [--time-unit U] [--intensity-unit U]\n"
-      "      [--until T] [--out FILE.csv]   forks one branch per factor or hyetograph, runs them side by side\n"
-      "        and tabulates each branch's events (landslide onset, impact, wave at each gauge, overtopping)\n"
+      "      [--until T] [--stop-after KIND[:S]] [--out FILE.csv]   forks one branch per factor or hyetograph,\n"
+      "        runs them side by side and tabulates each branch's events (ponding, landslide onset, impact,\n"
+      "        wave at each gauge, overtopping)\n"
       "  help  this text\n",
       out);
 }

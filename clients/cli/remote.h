@@ -47,7 +47,7 @@ inline const std::set<std::string> kValueOptions = {
     "--stride", "--out",   "--since",  "--field",  "--translucent", "--colour-map", "--min", "--max", "--camera",
     "--azimuth", "--elevation", "--zoom", "--fov", "--eye", "--target", "--width", "--height", "--background",
     "--frames", "--every-sim", "--every-wall", "--count", "--reason", "--rain-factors", "--hyetograph",
-    "--time-unit", "--intensity-unit", "--until"};
+    "--time-unit", "--intensity-unit", "--until", "--stop-after"};
 
 inline Arguments parse_arguments(const std::vector<std::string>& args) {
   Arguments a;
@@ -122,6 +122,18 @@ inline void add_forcing(const std::string& command, const std::string& pair, v1:
     if (value != "none") forcing.mutable_ponding()->set_p_min(number(key, value));
   } else throw UsageError(command + ": '" + key + "' is not steerable here " + kSteerable);
   mask.add_paths(key);
+}
+
+// --stop-after KIND[:SECONDS] (run-until, ensemble): the run ends SECONDS after the first cascade
+// event KIND; the server checks the kind. Unset without the option.
+inline std::optional<v1::EventStop> event_stop(const Arguments& args) {
+  const std::string text = args.option("--stop-after");
+  if (text.empty()) return std::nullopt;
+  const auto colon = text.find(':');
+  v1::EventStop stop;
+  stop.set_kind(text.substr(0, colon));
+  stop.set_seconds(colon == std::string::npos ? 0.0 : number("--stop-after", text.substr(colon + 1)));
+  return stop;
 }
 
 inline std::string json_of(const google::protobuf::Message& message) {

@@ -421,6 +421,7 @@ const std::map<std::string, Handler>& handlers() {
        [](Remote& r) {
          auto request = named<v1::RunSimulationUntilRequest>(r);
          request.set_time(number("run-until T", r.positional(1, "a time in seconds")));
+         if (const auto stop = event_stop(r.args())) *request.mutable_stop_after_event() = *stop;
          return simulation_call(r, request, &Stub::RunSimulationUntil);
        }},
       {"set", set_forcing},

@@ -4,6 +4,7 @@
 #include <google/protobuf/unknown_field_set.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -99,6 +100,17 @@ grpc::Status check_run_until(const v1::RunSimulationUntilRequest& request, doubl
   if (!std::isfinite(request.time())) return invalid("time", "is not a finite number");
   if (!(request.time() > 0) || request.time() > end_time)
     return invalid("time", "must be in (0, end_time = " + number(end_time) + "] s, got " + number(request.time()));
+  if (request.has_stop_after_event()) {
+    const auto& stop = request.stop_after_event();
+    const std::array<const char*, 5> kinds = {"ponding_started", "landslide_onset", "water_impact", "wave_at_gauge",
+                                              "overtopping"};
+    if (std::find(kinds.begin(), kinds.end(), stop.kind()) == kinds.end())
+      return invalid("stop_after_event.kind", "'" + stop.kind().substr(0, 80) +
+                                                  "' is not a cascade event (ponding_started, landslide_onset, "
+                                                  "water_impact, wave_at_gauge, overtopping)");
+    if (!std::isfinite(stop.seconds()) || stop.seconds() < 0)
+      return invalid("stop_after_event.seconds", "must be a finite number >= 0, got " + number(stop.seconds()));
+  }
   return grpc::Status::OK;
 }
 

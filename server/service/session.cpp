@@ -89,6 +89,7 @@ struct Session::Command {
   CheckpointDone checkpoint_done;
   std::string reason;  // advance_stage; fork: the fork's name
   ForkDone fork_done;
+  std::optional<v1::EventStop> event_stop;  // run_until
 };
 
 Session::Session(SessionConfig config)
@@ -159,8 +160,10 @@ void Session::resume(const std::string& caller, Done done) {
 void Session::step(std::uint64_t steps, const std::string& caller, Done done) {
   enqueue({Command::Kind::step, caller, steps, 0, {}, {}, std::move(done), {}});
 }
-void Session::run_until(double time, const std::string& caller, Done done) {
-  enqueue({Command::Kind::run_until, caller, 0, time, {}, {}, std::move(done), {}});
+void Session::run_until(double time, const std::string& caller, Done done, std::optional<v1::EventStop> stop) {
+  Command command{Command::Kind::run_until, caller, 0, time, {}, {}, std::move(done), {}};
+  command.event_stop = std::move(stop);
+  enqueue(std::move(command));
 }
 void Session::update_forcing(const v1::Forcing& forcing, std::vector<std::string> mask,
                              std::optional<double> effective_time, const std::string& caller, Done done) {
@@ -416,19 +419,19 @@ void Session::apply(Command& c) {
   switch (c.kind) {
     case Command::Kind::start:
       if (!transition(c.done, {v1::Simulation::CREATED}, "start")) return;
-      stop_step_.reset(), stop_time_.reset();
+      stop_step_.reset(), stop_time_.reset(), stop_event_.reset();
       run("start", "");
       c.done(here());
       return;
     case Command::Kind::resume:
       if (!transition(c.done, {v1::Simulation::PAUSED}, "resume")) return;
-      stop_step_.reset(), stop_time_.reset();
+      stop_step_.reset(), stop_time_.reset(), stop_event_.reset();
       run("resume", "");
       c.done(here());
       return;
     case Command::Kind::step:
       if (!transition(c.done, {v1::Simulation::CREATED, v1::Simulation::PAUSED}, "step")) return;
-      stop_step_ = engine_->step_count() + c.steps, stop_time_.reset();
+      stop_step_ = engine_->step_count() + c.steps, stop_time_.reset(), stop_event_.reset();
       run("step", std::to_string(c.steps));
       target_waiters_.push_back(std::move(c.done));
       return;
@@ -441,7 +444,10 @@ void Session::apply(Command& c) {
         return;
       }
       stop_time_ = c.time, stop_step_.reset();
-      run("run_until", exact_text(c.time));
+      stop_event_ = c.event_stop;
+      run("run_until", exact_text(c.time) + (stop_event_ ? " or " + exact_text(stop_event_->seconds()) + " s after " +
+                                                               stop_event_->kind()
+                                                         : ""));
       target_waiters_.push_back(std::move(c.done));
       return;
     case Command::Kind::pause: {
@@ -626,7 +632,7 @@ void Session::stop_running(v1::Simulation::State state, const std::string& reaso
     if (state == v1::Simulation::FAILED) failure_reason_ = reason;
   }
   add_event(state == v1::Simulation::FAILED ? "failure" : "state", std::string(state_word(state)) + ": " + reason, "server");
-  stop_step_.reset(), stop_time_.reset();
+  stop_step_.reset(), stop_time_.reset(), stop_event_.reset();
   publish_status();
   for (auto& waiter : target_waiters_) waiter(here());
   target_waiters_.clear();
@@ -692,6 +698,10 @@ void Session::sample_outputs(bool force) {
   }
   // The cascade's moments (cascade_events.h): to the event list, the watch streams and the journal.
   for (const CascadeEvent& e : fired) {
+    if (stop_event_ && stop_time_ && e.kind == stop_event_->kind()) {  // run_until's earlier end
+      stop_time_ = std::min(*stop_time_, t + stop_event_->seconds());
+      stop_event_.reset();
+    }
     add_event(e.kind, e.message, "solver");
     v1::JournalEntry entry;
     entry.set_caller("solver");

@@ -105,7 +105,8 @@ class Session {
   void pause(const std::string& caller, Done done);
   void resume(const std::string& caller, Done done);
   void step(std::uint64_t steps, const std::string& caller, Done done);
-  void run_until(double time, const std::string& caller, Done done);
+  // With `stop`, the run ends earlier: stop.seconds after the first cascade event of stop.kind.
+  void run_until(double time, const std::string& caller, Done done, std::optional<v1::EventStop> stop = std::nullopt);
   // `mask` holds validated paths of kSteerableForcingFields; without `effective_time` the change
   // applies at the next step boundary, else at the first one at or after that time.
   void update_forcing(const v1::Forcing& forcing, std::vector<std::string> mask, std::optional<double> effective_time,
@@ -201,6 +202,7 @@ class Session {
   std::vector<ScheduledForcing> scheduled_;
   std::optional<std::uint64_t> stop_step_;
   std::optional<double> stop_time_;
+  std::optional<v1::EventStop> stop_event_;  // run_until's: stop_time_ moves to its event's time + seconds
   std::vector<Done> target_waiters_;
   std::vector<std::weak_ptr<FrameTap>> frame_taps_;
   CaseRain rain_;  // the case's rain and the operator's steering of it

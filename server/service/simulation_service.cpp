@@ -284,7 +284,8 @@ grpc::ServerUnaryReactor* SimulationService::RunSimulationUntil(grpc::CallbackSe
                  [checked](Session& s, const std::string& caller, Session::Done done) {
                    if (auto status = check_run_until(checked, s.spec().end_time()); !status.ok())
                      return done({status, 0, 0});
-                   s.run_until(checked.time(), caller, std::move(done));
+                   s.run_until(checked.time(), caller, std::move(done),
+                               checked.has_stop_after_event() ? std::optional(checked.stop_after_event()) : std::nullopt);
                  });
 }
 

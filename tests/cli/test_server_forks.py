@@ -271,6 +271,28 @@ class BadForks(unittest.TestCase):
             self.assertEqual(server.cli("fork", "p", "--id", "ok", token=op).returncode, 0)
 
 
+class RunUntilAnEvent(unittest.TestCase):
+    def test_run_until_stops_after_the_event_and_refuses_an_unknown_kind(self):
+        with clitest.Server("stop_after") as server:
+            case = clitest.WORK_DIR / "stop_column.yaml"
+            case.write_text(series_case().read_text().replace("intensity: 1e-6}", "intensity: 2.5e-4}"))
+            assert server.cli("create", case, "--id", "c").returncode == 0
+            p = server.cli("run-until", "c", "500", "--stop-after", "ponding_started:10", "--json")
+            self.assertEqual(p.returncode, 0, p.stderr)
+            stopped = json.loads(p.stdout)
+            ponding = [e for e in json.loads(server.cli("events", "c", "--json").stdout)["events"]
+                       if e["kind"] == "ponding_started"]
+            self.assertEqual(len(ponding), 1)
+            self.assertEqual(stopped["state"], "PAUSED")
+            self.assertGreaterEqual(stopped["status"]["time"], ponding[0]["time"] + 10.0)
+            self.assertLessEqual(stopped["status"]["time"], ponding[0]["time"] + 12.0)  # steps of at most 2 s
+            for args, field in ((("--stop-after", "landslide:1"), "stop_after_event.kind"),
+                                (("--stop-after", "ponding_started:-1"), "stop_after_event.seconds")):
+                p = server.cli("run-until", "c", "600", *args)
+                self.assertEqual(p.returncode, 1)
+                self.assertIn(f"INVALID_ARGUMENT: {field}", p.stderr)
+
+
 class Ensembles(unittest.TestCase):
     """Branches at 1 and 50 times the rain and a hyetograph of 8e-4 m/s from t = 300 s, forked from
     the column at t = 200 s (its own rain 5e-6 m/s, K_sat 1e-4 m/s), run side by side to 500 s."""
@@ -290,11 +312,17 @@ events: {ponding_started: true}
         cls.hyetograph = clitest.WORK_DIR / "storm.csv"
         cls.hyetograph.write_text("time,intensity\n0,18\n300,2880\n")  # mm/h: 5e-6, then 8e-4 m/s
 
-    def check_branches(self, rows, server, parent):
+    def check_branches(self, rows, server, parent, stop_after=None):
+        """Each branch ran to UNTIL, or with stop_after = seconds, ended that long after its own
+        ponding, at the first step boundary at or after it (steps of at most 2 s)."""
         by_label = {row["branch"]: row for row in rows}
         self.assertEqual(set(by_label), {"rain x1", "rain x50", "storm.csv"})
         for row in rows:
-            self.assertGreaterEqual(row["time"], self.UNTIL)
+            if stop_after is None or row["ponding"] is None:
+                self.assertGreaterEqual(row["time"], self.UNTIL, row["branch"])
+            else:
+                self.assertGreaterEqual(row["time"], row["ponding"] + stop_after, row["branch"])
+                self.assertLessEqual(row["time"], row["ponding"] + stop_after + 2.0, row["branch"])
         self.assertIsNone(by_label["rain x1"]["ponding"])
         self.assertGreater(by_label["rain x50"]["ponding"], 2.0 * SERIES_FORK_STEP)
         self.assertGreater(by_label["storm.csv"]["ponding"], 300.0)
@@ -338,7 +366,7 @@ events: {ponding_started: true}
             sim = client.create(self.case, simulation_id="p")
             sim.step(SERIES_FORK_STEP)
             result = ensemble(sim, rain_factors=[1, 50], hyetographs={"storm.csv": [(0.0, 5e-6), (300.0, 8e-4)]},
-                              until=self.UNTIL)
+                              until=self.UNTIL, stop_after=("ponding_started", 20.0))
             rows = [{"branch": r["branch"], "simulation": r["simulation"], "time": r["time"],
                      "ponding": None if r["ponding_started"] != r["ponding_started"] else r["ponding_started"]}
                     for r in result.rows]
@@ -346,7 +374,7 @@ events: {ponding_started: true}
             png = clitest.WORK_DIR / "ensemble.png"
             result.plot(png, probes=["p_top", "p_mid"])
             self.assertEqual(png.read_bytes()[:8], b"\x89PNG\r\n\x1a\n")
-            self.check_branches(rows, server, "p")
+            self.check_branches(rows, server, "p", stop_after=20.0)
 
 
 if __name__ == "__main__":

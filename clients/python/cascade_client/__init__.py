@@ -127,8 +127,13 @@ class Simulation:
         """Runs `steps` steps and returns once they are done (the simulation is then PAUSED)."""
         return self.client.call("StepSimulation", pb.StepSimulationRequest(name=self.name, steps=steps))
 
-    def run_until(self, time):
-        return self.client.call("RunSimulationUntil", pb.RunSimulationUntilRequest(name=self.name, time=time))
+    def run_until(self, time, stop_after=None):
+        """Runs to `time` and returns the Simulation, PAUSED there; with stop_after=(kind, seconds)
+        it stops earlier, `seconds` after the first cascade event `kind` of this run."""
+        request = pb.RunSimulationUntilRequest(name=self.name, time=time)
+        if stop_after is not None:
+            request.stop_after_event.kind, request.stop_after_event.seconds = stop_after
+        return self.client.call("RunSimulationUntil", request)
 
     def delete(self):
         self.client.call("DeleteSimulation", pb.DeleteSimulationRequest(name=self.name))

@@ -10,7 +10,8 @@
 Each branch is a fork of the simulation at one step (a running parent pauses for the forks and
 goes on after them), with the case's rain times a factor (rainfall.factor) or a hyetograph of its
 own: a list of (time s, intensity m/s) on the case's clock, each row from the first step boundary at
-or after its time. The branches run on the server at once, sharing its cores. `cascade ensemble`
+or after its time. The branches run on the server at once, sharing its cores, to a time, or each
+a few seconds past its own failure: stop_after=("landslide_onset", 3.0). `cascade ensemble`
 is the same from the command line.
 """
 
@@ -37,9 +38,10 @@ def _intensity_at(rows, time):
     return at
 
 
-def _run(branch, end):
+def _run(branch, end, stop_after):
     """To `end`, each later hyetograph row applied where a scheduled change would apply it: run
-    to its time, then change the rain, so that nothing depends on when a request arrives."""
+    to its time, then change the rain, so that nothing depends on when a request arrives. With
+    stop_after, each run ends early after the branch's event, and the branch goes no further."""
     sim = branch.simulation
     try:
         now = sim.get()
@@ -48,12 +50,12 @@ def _run(branch, end):
                 continue
             if t >= end:
                 break
-            now = sim.run_until(t)
-            if now.state != State.PAUSED:
+            now = sim.run_until(t, stop_after)
+            if now.state != State.PAUSED or now.status.time < t:
                 return
             sim.set_rainfall(intensity)
         if end > now.status.time:
-            sim.run_until(end)
+            sim.run_until(end, stop_after)
     except Exception as error:  # reported in the table; the other branches go on
         branch.error = error
 
@@ -135,9 +137,11 @@ class Ensemble:
         plt.close(fig)
 
 
-def ensemble(simulation, rain_factors=(), hyetographs=None, until=None):
+def ensemble(simulation, rain_factors=(), hyetographs=None, until=None, stop_after=None):
     """Forks one branch per rain factor and per hyetograph ({label: [(time s, intensity m/s)]}),
-    runs them side by side to `until` (default the case's end) and returns an Ensemble."""
+    runs them side by side to `until` (default the case's end), each ending early `seconds`
+    after its own first cascade event `kind` with stop_after=(kind, seconds), and returns an
+    Ensemble."""
     branches = [Branch(f"rain x{f:g}", factor=f) for f in rain_factors]
     branches += [Branch(label, hyetograph=rows) for label, rows in (hyetographs or {}).items()]
     if not branches:
@@ -157,7 +161,7 @@ def ensemble(simulation, rain_factors=(), hyetographs=None, until=None):
         if was_running:
             simulation.resume()
     end = parent.end_time if until is None else until
-    threads = [threading.Thread(target=_run, args=(b, end)) for b in branches]
+    threads = [threading.Thread(target=_run, args=(b, end, stop_after)) for b in branches]
     for t in threads:
         t.start()
     for t in threads:
