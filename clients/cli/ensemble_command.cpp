@@ -63,14 +63,6 @@ std::vector<Branch> branches_of(const Remote& remote) {
   return branches;
 }
 
-template <typename Request, typename Reply>
-bool call(Remote& remote, grpc::Status (v1::SimulationService::Stub::*method)(grpc::ClientContext*, const Request&, Reply*),
-          const Request& request, Reply& reply) {
-  grpc::ClientContext context;
-  remote.prepare(context);
-  return remote.ok((remote.stub().*method)(&context, request, &reply));
-}
-
 // The fork of `parent` for one branch: the factor at the fork, or the hyetograph's intensity at the
 // fork's time there and each later row scheduled at its time.
 bool fork_branch(Remote& remote, const v1::Simulation& parent, Branch& branch) {

@@ -203,6 +203,15 @@ class Remote {
   std::unique_ptr<v1::SimulationService::Stub> stub_;
 };
 
+// One unary call with the caller's token; a refusal is printed (Remote::ok). True when it succeeded.
+template <typename Request, typename Reply>
+bool call(Remote& remote, grpc::Status (v1::SimulationService::Stub::*method)(grpc::ClientContext*, const Request&, Reply*),
+          const Request& request, Reply& reply) {
+  grpc::ClientContext context;
+  remote.prepare(context);
+  return remote.ok((remote.stub().*method)(&context, request, &reply));
+}
+
 inline const char* state_name(v1::Simulation::State state) {
   return v1::Simulation::State_Name(state).c_str();
 }

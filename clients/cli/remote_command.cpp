@@ -30,10 +30,8 @@ namespace {
 template <typename Request>
 int simulation_call(Remote& remote, Request request,
                     grpc::Status (v1::SimulationService::Stub::*method)(grpc::ClientContext*, const Request&, v1::Simulation*)) {
-  grpc::ClientContext context;
-  remote.prepare(context);
   v1::Simulation reply;
-  if (!remote.ok((remote.stub().*method)(&context, request, &reply))) return 1;
+  if (!call(remote, method, request, reply)) return 1;
   if (remote.args().json) std::puts(json_of(reply).c_str());
   else print_simulation(reply);
   return 0;

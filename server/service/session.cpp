@@ -103,22 +103,15 @@ Session::Session(SessionConfig config)
   if (restore_source_) {  // published at once: the reply to RestoreCheckpoint shows where it is
     state_ = v1::Simulation::PAUSED;
     status_.set_state(state_);
-    if (const Engine* fork = restore_source_->engine.get()) {
-      status_.set_time(fork->time());
-      status_.set_step(fork->step_count());
-      status_.set_dt(fork->last_dt());
-      status_.set_stage(std::uint32_t(fork->stage()));
-      status_.set_stage_name(stage_names_.at(std::size_t(fork->stage())));
-      forcing_ = forcing_message(fork->forcing(), config_.engine.dimensions);
-    } else {
-      const EngineState& restored = restore_source_->checkpoint.engine;
-      status_.set_time(restored.time);
-      status_.set_step(restored.steps);
-      status_.set_dt(restored.last_dt);
-      status_.set_stage(std::uint32_t(restored.stage));
-      status_.set_stage_name(stage_names_.at(std::size_t(restored.stage)));
-      forcing_ = forcing_message(restored.forcing, config_.engine.dimensions);
-    }
+    const Engine* clone = restore_source_->engine.get();  // a fork's
+    const EngineState& restored = restore_source_->checkpoint.engine;
+    const int stage = clone ? clone->stage() : restored.stage;
+    status_.set_time(clone ? clone->time() : restored.time);
+    status_.set_step(clone ? clone->step_count() : restored.steps);
+    status_.set_dt(clone ? clone->last_dt() : restored.last_dt);
+    status_.set_stage(std::uint32_t(stage));
+    status_.set_stage_name(stage_names_.at(std::size_t(stage)));
+    forcing_ = forcing_message(restored.forcing, config_.engine.dimensions);
     if (const auto& fork = restore_source_->fork) {  // a fork goes on from its parent's history
       events_ = fork->events;
       probe_samples_ = fork->probe_samples;

@@ -39,14 +39,14 @@ using EngineFactory = std::function<std::unique_ptr<Engine>(const EngineConfig&,
 // What a fork takes from its parent besides the checkpoint: the run so far as clients saw it, so
 // that the fork's events and probes go on from the parent's, and no cascade event fires twice.
 struct ForkHistory {
-  std::string parent;  // simulations/{id}
   std::vector<v1::Event> events;
   std::vector<v1::ProbeSample> probe_samples;
   CascadeEventDetector cascade_events;
   double next_probe_time = 0;
   double kinetic_energy = 0, max_soil_speed = 0;  // as last sampled
   PoreWaterAccount pore_water;
-  v1::Forcing forcing;  // with the rain's factor, which the fork's solver thread finds in the journal
+  v1::Forcing forcing;  // as published, with the rain's factor
+  CaseRain rain;        // the steering of the case's rain so far
 };
 
 // A checkpoint to start from instead of the case's initial state: RestoreCheckpoint's file, or a
@@ -152,7 +152,6 @@ class Session {
   void initialise();
   void restore();  // initialise() from restore_source_
   std::filesystem::path take_checkpoint(const std::string& caller);
-  Checkpoint checkpoint_here(bool with_engine_state);  // the spec, journal (and state) at this step boundary
   std::shared_ptr<RestoreSource> take_fork(const std::string& fork_name, const std::string& caller);
   void apply(Command& command);
   void apply_forcing_change(const ScheduledForcing& change);

@@ -38,16 +38,6 @@ void replace_journal(const std::filesystem::path& path, const std::string& text)
 
 }  // namespace
 
-Checkpoint Session::checkpoint_here(bool with_engine_state) {
-  Checkpoint checkpoint;
-  checkpoint.simulation = config_.name;
-  checkpoint.wall_time = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-  checkpoint.spec = config_.spec;
-  checkpoint.journal = read_text(journal_->path());
-  if (with_engine_state) checkpoint.engine = engine_->state();
-  return checkpoint;
-}
-
 std::filesystem::path Session::take_checkpoint(const std::string& caller) {
   const auto path = next_checkpoint_path(config_.directory);
   std::filesystem::create_directories(path.parent_path());
@@ -56,7 +46,13 @@ std::filesystem::path Session::take_checkpoint(const std::string& caller) {
   entry.set_caller(caller);
   entry.set_detail(checkpoint_name(config_.name, path));
   journal(entry);  // first, so that the checkpoint's journal ends with it
-  write_checkpoint(path, checkpoint_here(true));
+  Checkpoint checkpoint;
+  checkpoint.simulation = config_.name;
+  checkpoint.wall_time = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  checkpoint.spec = config_.spec;
+  checkpoint.journal = read_text(journal_->path());
+  checkpoint.engine = engine_->state();
+  write_checkpoint(path, checkpoint);
   add_event("checkpoint", entry.detail(), caller);
   return path;
 }
@@ -73,13 +69,12 @@ std::shared_ptr<RestoreSource> Session::take_fork(const std::string& fork_name, 
   journal(entry);
   auto source = std::make_shared<RestoreSource>();
   source->checkpoint_name = config_.name + " at step " + std::to_string(engine_->step_count());
-  source->checkpoint = checkpoint_here(false);
+  source->checkpoint.journal = read_text(journal_->path());
   source->engine = engine_->clone();
   {
     std::lock_guard lock(mutex_);
-    source->fork = ForkHistory{config_.name,     events_,         probe_samples_, *cascade_events_,
-                               next_probe_time_, kinetic_energy_, max_soil_speed_, pore_water_,
-                               forcing_};
+    source->fork = ForkHistory{events_,         probe_samples_, *cascade_events_, next_probe_time_, kinetic_energy_,
+                               max_soil_speed_, pore_water_,    forcing_,         rain_};
   }
   add_event("fork", fork_name, caller);
   return source;
@@ -91,10 +86,13 @@ void Session::restore() {
     const auto journal_path = config_.directory / "journal.jsonl";
     replace_journal(journal_path, source.checkpoint.journal);
     journal_ = std::make_unique<JournalWriter>(journal_path);
-    // The steering of the case's rain so far (a steered intensity, a factor), as advance() goes on.
-    for (const auto& entry : read_journal(journal_path))
-      if (entry.command() == "update_forcing")
-        rain_.steer({entry.update_mask().begin(), entry.update_mask().end()}, entry.new_forcing());
+    // The steering of the case's rain so far (a steered intensity, a factor), as advance() goes on:
+    // a fork's is its parent's; a checkpoint's is in its journal.
+    if (source.fork) rain_ = source.fork->rain;
+    else
+      for (const auto& entry : read_journal(journal_path))
+        if (entry.command() == "update_forcing")
+          rain_.steer({entry.update_mask().begin(), entry.update_mask().end()}, entry.new_forcing());
     if (source.engine) {  // a fork: the parent's clone
       engine_ = std::move(source.engine);
     } else {
