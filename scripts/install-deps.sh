@@ -9,7 +9,7 @@ packages=(
   libeigen3-dev libyaml-cpp-dev libhdf5-dev libthrust-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libgles-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
-  libvtk9-dev
+  libvtk9-dev libgdal-dev
   python3 python3-numpy python3-h5py python3-matplotlib python3-yaml
   python3-grpcio python3-protobuf python3-grpc-tools
   # the fuzz preset (scripts/fuzz.sh): clang, libFuzzer and clang's OpenMP runtime

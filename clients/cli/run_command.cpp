@@ -304,6 +304,15 @@ int run_command(const std::vector<std::string>& args) {
   const auto& particles = set.particles;
   summary.particles = {particles.size(), particles.count(Phase::water), particles.count(Phase::soil),
                        particles.count(Phase::boundary)};
+  if (spec.terrain().has_grid()) {
+    const v1::TerrainGrid& grid = spec.terrain().grid();
+    summary.terrain.present = true;
+    for (int a = 0; a < grid.origin_size() && a < 2; ++a) summary.terrain.origin[a] = grid.origin(a);
+    summary.terrain.crs = grid.crs();
+    summary.terrain.surface = grid.surface_source();
+    summary.terrain.base = grid.base_source();
+    for (const v1::MapPoint& p : grid.section()) summary.terrain.section.push_back({p.x(), p.y()});
+  }
   const double end_time = options.until ? *options.until : spec.end_time();
   const auto json_path = options.out_dir / "run.json";
 

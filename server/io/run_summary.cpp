@@ -110,6 +110,18 @@ std::string run_summary_json(const RunSummary& s) {
   if (s.pore_water.present)
     j += "  \"pore_water\": {\"rain\": " + json_number(s.pore_water.rain) + ", \"walls\": " +
          json_number(s.pore_water.walls) + ", \"surface\": " + json_number(s.pore_water.surface) + "},\n";
+  if (s.terrain.present) {
+    j += "  \"terrain\": {\"origin\": [" + json_number(s.terrain.origin[0]) + ", " + json_number(s.terrain.origin[1]) +
+         "], \"frame\": \"x = X - origin[0], y = Y - origin[1] (2D: x = the distance along the section), z = "
+         "elevation\", \"surface\": " + json_string(s.terrain.surface) + ", \"base\": " + json_string(s.terrain.base);
+    if (!s.terrain.section.empty()) {
+      j += ", \"section\": [";
+      for (std::size_t k = 0; k < s.terrain.section.size(); ++k)
+        j += (k ? ", [" : "[") + json_number(s.terrain.section[k][0]) + ", " + json_number(s.terrain.section[k][1]) + "]";
+      j += "]";
+    }
+    j += ", \"crs\": " + json_string(s.terrain.crs) + "},\n";
+  }
   j += "  \"events\": [";
   for (std::size_t i = 0; i < s.events.size(); ++i) {
     const RunEvent& e = s.events[i];

@@ -2,6 +2,7 @@
 // that compare runs. Keys and units in docs/output.md.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -38,6 +39,15 @@ struct RunSummary {
     bool present = false;
     double rain = 0, walls = 0, surface = 0;
   } pore_water;
+  // The case's terrain (ScenarioSpec.terrain): its local frame is x = X − origin[0],
+  // y = Y − origin[1] in the rasters' map coordinates, z the elevation.
+  struct Terrain {
+    bool present = false;
+    double origin[2] = {0.0, 0.0};
+    std::string crs;                            // WKT
+    std::string surface, base;                  // the rasters (or the thickness) it came from
+    std::vector<std::array<double, 2>> section;  // 2D: the section's polyline in map coordinates
+  } terrain;
   std::vector<RunEvent> events;
 };
 

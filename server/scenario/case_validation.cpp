@@ -10,6 +10,7 @@
 #include "server/scenario/case_error.h"
 #include "server/scenario/case_loader.h"
 #include "server/scenario/number_text.h"
+#include "server/terrain/terrain_grid.h"
 #include "server/scenario/plausible_ranges.h"
 #include "server/scenario/snapshot_fields.h"
 #include "server/scenario/soil_setup.h"
@@ -57,6 +58,7 @@ class SpecChecker {
     check_vector("gravity", spec_.gravity(), dims_, "the body force per unit mass");
     check_materials();
     check_bodies();
+    check_terrain(spec_, [this](const std::string& key, const std::string& message) { error(key, message); });
     check_numerics();
     check_output();
     check_probes();
@@ -315,7 +317,7 @@ class SpecChecker {
   void check_shape(const std::string& key, const pb::Shape& s, bool inside_domain) const {
     switch (s.kind_case()) {
       case pb::Shape::KIND_NOT_SET:
-        error(key, "names no shape: give one of box, polygon, extruded_polygon, half_space");
+        error(key, "names no shape: give one of box, polygon, extruded_polygon, half_space, terrain");
       case pb::Shape::kBox: {
         check_min_max(key + ".box", s.box().min(), s.box().max(), "the box");
         if (inside_domain)
@@ -342,6 +344,18 @@ class SpecChecker {
           check_inside(key + ".extruded_polygon.y_min", e.y_min(), 1);
           check_inside(key + ".extruded_polygon.y_max", e.y_max(), 1);
         }
+        return;
+      }
+      case pb::Shape::kTerrain: {
+        const pb::TerrainLayer& t = s.terrain();
+        if (t.layer() == pb::TERRAIN_LAYER_KIND_UNSPECIFIED)
+          error(key + ".terrain.layer", "is missing: give ground, bedrock or lake");
+        if (t.layer() == pb::LAKE && !t.has_level())
+          error(key + ".terrain.level", "is missing: a lake fills the terrain up to its level (an elevation, m)");
+        if (t.layer() != pb::LAKE && t.has_level())
+          error(key + ".terrain.level", "is for a lake; the " + std::string(t.layer() == pb::GROUND ? "ground" : "bedrock") +
+                                            " lies between the terrain's own surfaces");
+        if (t.has_level()) finite(key + ".terrain.level", t.level());
         return;
       }
       case pb::Shape::kHalfSpace: {

@@ -13,6 +13,7 @@
 
 namespace cascade::v1 {
 class Shape;
+class TerrainGrid;
 }
 
 namespace cascade {
@@ -87,7 +88,7 @@ struct Face {
 // clipping uses; `faces` cover the whole surface with outward normals.
 class Shape {
  public:
-  enum class Kind { box, polygon, extruded_polygon, half_space };
+  enum class Kind { box, polygon, extruded_polygon, half_space, heightfield };
 
   // `min`, `max`, `point`, `normal` are `dimensions`-component vectors as in the schema: (x, z) in
   // 2D. `polygon` vertices are (x, z) pairs. Invalid input throws CaseError naming `key`.
@@ -100,6 +101,13 @@ class Shape {
   // (a box well beyond the domain), so closest points inside the domain are exact.
   static Shape half_space(const std::vector<double>& point, const std::vector<double>& normal, int dimensions,
                           const Aabb& face_bounds, const std::string& key);
+
+  // The solid between two height fields over the rectangle x.front()..x.back() (3D: and
+  // y.front()..y.back(); 2D: y = {0}): heights at the nodes (x[i], y[j]), x fastest, linear between
+  // them (on the two triangles of each node cell, split along the diagonal from (i, j) to
+  // (i + 1, j + 1), in 3D), lower <= upper everywhere. A terrain layer (server/terrain).
+  static Shape heightfield(std::vector<double> x, std::vector<double> y, std::vector<double> lower,
+                           std::vector<double> upper, int dimensions, const std::string& key);
 
   Kind kind() const { return kind_; }
   int dimensions() const { return dimensions_; }
@@ -114,14 +122,18 @@ class Shape {
   int dimensions_ = 3;
   std::vector<Eigen::Vector2d> outline_;  // polygon vertices in (x, z), for the crossing test
   double y_min_ = 0.0, y_max_ = 0.0;      // extruded polygon
+  std::vector<double> node_x_, node_y_, lower_, upper_;  // heightfield
+  double height(const std::vector<double>& field, double x, double y) const;
   std::vector<ConvexCell> cells_;
   std::vector<Face> faces_;
   Aabb bounds_;
 };
 
-// Shape from its schema message (`key` names the message, e.g. `bodies[2].shape`).
+// Shape from its schema message (`key` names the message, e.g. `bodies[2].shape`). A terrain
+// layer takes the spec's terrain grid (`terrain`) and lattice spacing `dp`; a bedrock reaches down
+// to half_space_face_bounds' bottom.
 Shape shape_from_spec(const v1::Shape& spec, int dimensions, const Aabb& half_space_face_bounds,
-                      const std::string& key);
+                      const v1::TerrainGrid& terrain, double dp, const std::string& key);
 
 // A shape minus subtracted shapes (Body.shape minus Body.subtract).
 class Region {

@@ -47,6 +47,52 @@ struct LatticeBox {
   }
 };
 
+// The wetted pieces by the cells of a uniform grid over a box: each piece is listed in every
+// cell its bounding box, widened by `reach`, overlaps, so that the cell of a point lists every
+// piece within `reach` of it. A terrain's bedrock has 10⁵ pieces; a search over all of them for
+// each of its 10⁵ dummy particles took hours.
+class WettedIndex {
+ public:
+  WettedIndex(const std::vector<Aabb>& pieces, const Aabb& box, double reach) : box_(box), cell_(reach) {
+    for (int a = 0; a < 3; ++a)
+      cells_[a] = box.empty() ? 1 : std::max<std::int64_t>(1, std::int64_t(std::ceil((box.hi[a] - box.lo[a]) / cell_)));
+    // A coarser grid where this one would be large (a thin wall's pieces span a whole side).
+    while (double(cells_[0]) * double(cells_[1]) * double(cells_[2]) > 4e6) {
+      cell_ *= 2.0;
+      for (int a = 0; a < 3; ++a) cells_[a] = std::max<std::int64_t>(1, (cells_[a] + 1) / 2);
+    }
+    lists_.resize(std::size_t(cells_[0] * cells_[1] * cells_[2]));
+    if (box.empty()) return;
+    for (std::size_t f = 0; f < pieces.size(); ++f) {
+      const Aabb b = pieces[f].expanded(reach).intersection(box);
+      if (b.empty()) continue;
+      std::int64_t lo[3], hi[3];
+      for (int a = 0; a < 3; ++a) lo[a] = cell_of(b.lo[a], a), hi[a] = cell_of(b.hi[a], a);
+      for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
+        for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+          for (std::int64_t i = lo[0]; i <= hi[0]; ++i) lists_[std::size_t((k * cells_[1] + j) * cells_[0] + i)].push_back(f);
+    }
+  }
+
+  // The pieces listed in x's cell, in increasing order (x within the box).
+  void near(const Vec3& x, std::vector<std::size_t>* out) const {
+    std::int64_t c[3];
+    for (int a = 0; a < 3; ++a) c[a] = cell_of(x[a], a);
+    *out = lists_[std::size_t((c[2] * cells_[1] + c[1]) * cells_[0] + c[0])];
+  }
+
+ private:
+  std::int64_t cell_of(double t, int a) const {
+    if (!(t > box_.lo[a])) return 0;
+    return std::min<std::int64_t>(cells_[a] - 1, std::int64_t((t - box_.lo[a]) / cell_));
+  }
+
+  Aabb box_;
+  double cell_;
+  std::int64_t cells_[3] = {1, 1, 1};
+  std::vector<std::vector<std::size_t>> lists_;
+};
+
 class Builder {
  public:
   explicit Builder(const v1::ScenarioSpec& spec) : spec_(spec) {}
@@ -56,6 +102,10 @@ class Builder {
  private:
   void read_case();
   LatticeBox lattice_box(const Aabb& box) const;
+  // The box spanned by a lattice box's points.
+  Aabb lattice_box_bounds(const LatticeBox& l) const {
+    return {lattice_point(l.first[0], l.first[1], l.first[2]), lattice_point(l.last[0], l.last[1], l.last[2])};
+  }
   Vec3 lattice_point(std::int64_t i, std::int64_t j, std::int64_t k) const {
     return {(double(i) + 0.5) * dp_, dims_ == 2 ? 0.0 : (double(j) + 0.5) * dp_, (double(k) + 0.5) * dp_};
   }
@@ -118,10 +168,12 @@ void Builder::read_case() {
     const v1::Body& b = spec_.bodies(i);
     const std::string key = body_key(i);
     if (b.kind() != v1::FLUID && b.kind() != v1::BOUNDARY) throw CaseError(key + ".kind", "must be FLUID or BOUNDARY");
-    Shape shape = shape_from_spec(b.shape(), dims_, face_bounds, key + ".shape");
+    const v1::TerrainGrid& terrain = spec_.terrain().grid();
+    Shape shape = shape_from_spec(b.shape(), dims_, face_bounds, terrain, dp_, key + ".shape");
     std::vector<Shape> sub;
     for (int k = 0; k < b.subtract_size(); ++k)
-      sub.push_back(shape_from_spec(b.subtract(k), dims_, face_bounds, key + ".subtract[" + std::to_string(k) + "]"));
+      sub.push_back(shape_from_spec(b.subtract(k), dims_, face_bounds, terrain, dp_,
+                                    key + ".subtract[" + std::to_string(k) + "]"));
     regions_.emplace_back(std::move(shape), std::move(sub));
     is_fluid_.push_back(b.kind() == v1::FLUID);
 
@@ -277,17 +329,21 @@ void Builder::add_boundary(int body) {
   const LatticeBox l = lattice_box(clipped_bounds(region).intersection(near.expanded(thickness)));
   const double limit2 = thickness * thickness;
   constexpr std::int64_t kOffset = std::int64_t(1) << 20;
+  const WettedIndex index(all_wetted_bounds_, lattice_box_bounds(l), thickness);
+  std::vector<std::size_t> candidates;
 
   for (std::int64_t k = l.first[2]; k <= l.last[2]; ++k)
     for (std::int64_t j = l.first[1]; j <= l.last[1]; ++j)
       for (std::int64_t i = l.first[0]; i <= l.last[0]; ++i) {
         const Vec3 x = lattice_point(i, j, k);
         if (!region.contains(x)) continue;
-        // Closest wetted point, brute force over the pieces, skipping those whose box is too far.
+        // Closest wetted point over the pieces within `thickness` (in piece order, so that ties
+        // go to the first piece as in a search over all), skipping those whose box is too far.
         double best2 = limit2;
         Vec3 surface_point = Vec3::Zero();
         bool found = false;
-        for (std::size_t f = 0; f < all_wetted_.size(); ++f) {
+        index.near(x, &candidates);
+        for (std::size_t f : candidates) {
           if (all_wetted_bounds_[f].squared_distance(x) >= best2) continue;
           const Vec3 s = all_wetted_[f].closest_point(x);
           const double d2 = (s - x).squaredNorm();

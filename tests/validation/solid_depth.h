@@ -36,8 +36,10 @@ class SolidDepth {
       const std::string key = "bodies[" + std::to_string(i) + "]";
       std::vector<Shape> subtract;
       for (int k = 0; k < b.subtract_size(); ++k)
-        subtract.push_back(shape_from_spec(b.subtract(k), dims, face_bounds, key + ".subtract"));
-      solids_.emplace_back(shape_from_spec(b.shape(), dims, face_bounds, key + ".shape"), std::move(subtract));
+        subtract.push_back(
+            shape_from_spec(b.subtract(k), dims, face_bounds, spec.terrain().grid(), spec.dp(), key + ".subtract"));
+      solids_.emplace_back(shape_from_spec(b.shape(), dims, face_bounds, spec.terrain().grid(), spec.dp(), key + ".shape"),
+                           std::move(subtract));
     }
     for (std::size_t r = 0; r < solids_.size(); ++r) {
       std::vector<Face> faces = solids_[r].surface(gap);
