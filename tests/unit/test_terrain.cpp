@@ -273,6 +273,26 @@ TEST(TerrainSpec, TheGridTravelsInTheSpecAndFilesDoNot) {
   EXPECT_THROW(validate_spec(bad), CaseError);
 }
 
+// The shipped hillside cases build: soil in every column of the footprint, the saturated lake
+// bed below the lake's level, the lake's water over it, dummies under all of it.
+TEST(TerrainCases, ShippedHillsideCasesBuild) {
+  for (const std::string name : {"hillside_dem_2d", "hillside_dem_3d"}) {
+    SCOPED_TRACE(name);
+    const auto spec = load_case_file(std::string(CASCADE_SOURCE_DIR) + "/cases/" + name + ".yaml");
+    const ParticleSet set = build_particle_set(spec);
+    const v1::TerrainGrid& g = spec.terrain().grid();
+    EXPECT_EQ(columns(set.particles, Phase::soil, spec.dp()).size(), std::size_t(g.nx()) * std::size_t(g.ny()));
+    std::map<std::string, const BodyReport*> body;
+    for (const BodyReport& b : set.bodies) body[b.name] = &b;
+    for (const char* b : {"bedrock", "lake_bed", "colluvium", "lake"}) ASSERT_GT(body.at(b)->count, 0u) << b;
+    const int d = spec.dimensions();
+    const BodyReport& bed = *body.at("lake_bed");
+    for (std::size_t n = bed.first; n < bed.first + bed.count; ++n) EXPECT_LT(set.particles.position[n * d + d - 1], 102.0);
+    const BodyReport& lake = *body.at("lake");
+    for (std::size_t n = lake.first; n < lake.first + lake.count; ++n) EXPECT_LT(set.particles.position[n * d + d - 1], 102.0);
+  }
+}
+
 struct BadTerrain {
   std::string name, terrain, key, message;
 };
