@@ -258,14 +258,11 @@ LayerSurfaces layer_surfaces(const pb::TerrainLayer& layer, const pb::TerrainGri
   s.x = extended(grid.nx());
   s.y = dimensions == 3 ? extended(grid.ny()) : std::vector<double>{0.0};
   const int nx = int(s.x.size()), ny = int(s.y.size());
-  const auto node = [&](const auto& field, int i, int j) {
-    const int gi = std::clamp(i - 1, 0, grid.nx() - 1), gj = dimensions == 3 ? std::clamp(j - 1, 0, grid.ny() - 1) : 0;
-    return field(gj * grid.nx() + gi);
-  };
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
-      const double surface = node([&](int k) { return grid.surface(k); }, i, j);
-      const double base = node([&](int k) { return grid.base(k); }, i, j);
+      // The grid's node nearest the extended node: the edge nodes repeat the outermost ones.
+      const int gi = std::clamp(i - 1, 0, grid.nx() - 1), gj = dimensions == 3 ? std::clamp(j - 1, 0, grid.ny() - 1) : 0;
+      const double surface = grid.surface(gj * grid.nx() + gi), base = grid.base(gj * grid.nx() + gi);
       switch (layer.layer()) {
         case pb::BEDROCK:
           s.lower.push_back(bottom), s.upper.push_back(base);
