@@ -10,9 +10,13 @@ namespace cascade {
 class CaseError : public std::runtime_error {
  public:
   CaseError(std::string key, std::string message, int line = -1, int column = -1, std::string file = {})
-      : std::runtime_error(format(file, key, message, line, column)), key_(std::move(key)), line_(line) {}
+      : std::runtime_error(format(file, key, message, line, column)),
+        key_(std::move(key)),
+        message_(std::move(message)),
+        line_(line) {}
 
   const std::string& key() const { return key_; }
+  const std::string& message() const { return message_; }  // without file, line and key
   int line() const { return line_; }  // 1-based; -1 when the key has no place in a file
 
  private:
@@ -25,6 +29,7 @@ class CaseError : public std::runtime_error {
   }
 
   std::string key_;
+  std::string message_;
   int line_;
 };
 

@@ -16,6 +16,7 @@
 #include "server/scenario/case_validation.h"
 #include "server/scenario/file_text.h"
 #include "server/scenario/hyetograph.h"
+#include "server/terrain/stl_solid.h"
 #include "server/terrain/terrain_grid.h"
 
 namespace cascade {
@@ -508,6 +509,9 @@ pb::ScenarioSpec load_case(const std::string& yaml_text, const std::vector<CaseO
   if (case_directory && names_terrain_rasters(spec.terrain()))
     expand_terrain(*spec.mutable_terrain(), spec.dimensions(), spec.dp(), *case_directory,
                    [&](const std::string& key, const std::string& message) { throw mapper.error_at(key, message); });
+  if (case_directory && names_stl_files(spec))  // after the terrain, whose origin map coordinates need
+    expand_stl_meshes(spec, *case_directory,
+                      [&](const std::string& key, const std::string& message) { throw mapper.error_at(key, message); });
   check_spec(spec, [&](const std::string& key, const std::string& message) { throw mapper.error_at(key, message); });
   apply_defaults(spec);
   return spec;

@@ -10,6 +10,8 @@
 #include "server/scenario/case_error.h"
 #include "server/scenario/case_loader.h"
 #include "server/scenario/number_text.h"
+#include "server/scenario/geometry.h"
+#include "server/terrain/stl_solid.h"
 #include "server/terrain/terrain_grid.h"
 #include "server/scenario/plausible_ranges.h"
 #include "server/scenario/snapshot_fields.h"
@@ -317,7 +319,7 @@ class SpecChecker {
   void check_shape(const std::string& key, const pb::Shape& s, bool inside_domain) const {
     switch (s.kind_case()) {
       case pb::Shape::KIND_NOT_SET:
-        error(key, "names no shape: give one of box, polygon, extruded_polygon, half_space, terrain");
+        error(key, "names no shape: give one of box, polygon, extruded_polygon, half_space, terrain, mesh");
       case pb::Shape::kBox: {
         check_min_max(key + ".box", s.box().min(), s.box().max(), "the box");
         if (inside_domain)
@@ -356,6 +358,26 @@ class SpecChecker {
           error(key + ".terrain.level", "is for a lake; the " + std::string(t.layer() == pb::GROUND ? "ground" : "bedrock") +
                                             " lies between the terrain's own surfaces");
         if (t.has_level()) finite(key + ".terrain.level", t.level());
+        return;
+      }
+      case pb::Shape::kMesh: {
+        const pb::SolidMesh& m = s.mesh();
+        if (dims_ != 3) error(key + ".mesh", "is a 3D shape (a solid from an STL file); a 2D case uses polygon");
+        const std::string file_message =
+            "is for the loader of a case file (cascade run, cascade create), which reads the STL file: a case sent as "
+            "text, or a spec, carries the mesh's vertices and triangles instead";
+        if (!m.stl_file().empty()) error(key + ".mesh.stl_file", file_message);
+        if (m.scale() != 0) error(key + ".mesh.scale", file_message);
+        if (m.translate_size() > 0) error(key + ".mesh.translate", file_message);
+        if (m.map_coordinates()) error(key + ".mesh.map_coordinates", file_message);
+        if (m.vertices_size() == 0 && m.triangles_size() == 0)
+          error(key + ".mesh.stl_file", "is missing: the STL file of the solid (a spec carries vertices and triangles)");
+        if (const std::string defect = mesh_defect(m); !defect.empty()) error(key + ".mesh", defect);
+        try {  // a closed surface may still cross itself: the decomposition into cells finds it
+          shape_from_spec(s, 3, Aabb::everything(), pb::TerrainGrid(), 1.0, key);
+        } catch (const CaseError& e) {
+          error(e.key(), e.message());
+        }
         return;
       }
       case pb::Shape::kHalfSpace: {

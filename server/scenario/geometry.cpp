@@ -378,6 +378,8 @@ bool Shape::contains(const Vec3& x) const {
       if (x.x() < node_x_.front() || x.x() > node_x_.back()) return false;
       if (dimensions_ == 3 && (x.y() < node_y_.front() || x.y() > node_y_.back())) return false;
       return x.z() >= height(lower_, x.x(), x.y()) && x.z() <= height(upper_, x.x(), x.y());
+    case Kind::mesh:
+      return mesh_contains(x);
   }
   return false;
 }
@@ -506,6 +508,7 @@ Shape Shape::translated(const Vec3& shift) const {
   for (double& z : s.lower_) z += shift.z();
   for (double& z : s.upper_) z += shift.z();
   for (auto& c : s.cells_) c = c.translated(shift);
+  for (auto& b : s.cell_bounds_) b.lo += shift, b.hi += shift;
   for (auto& f : s.faces_) f = f.translated(shift);
   s.bounds_.lo += shift, s.bounds_.hi += shift;
   return s;
@@ -539,10 +542,21 @@ Shape shape_from_spec(const v1::Shape& spec, int dimensions, const Aabb& half_sp
       return Shape::heightfield(std::move(l.x), std::move(l.y), std::move(l.lower), std::move(l.upper), dimensions,
                                 key + ".terrain");
     }
+    case v1::Shape::kMesh: {
+      if (dimensions != 3) throw CaseError(key + ".mesh", "is a 3D shape; a 2D case uses polygon");
+      const v1::SolidMesh& m = spec.mesh();
+      std::vector<Vec3> vertices;
+      for (int k = 0; k + 2 < m.vertices_size(); k += 3)
+        vertices.emplace_back(m.vertices(k), m.vertices(k + 1), m.vertices(k + 2));
+      std::vector<std::array<std::uint32_t, 3>> triangles;
+      for (int k = 0; k + 2 < m.triangles_size(); k += 3)
+        triangles.push_back({m.triangles(k), m.triangles(k + 1), m.triangles(k + 2)});
+      return Shape::mesh(vertices, triangles, key + ".mesh");
+    }
     case v1::Shape::KIND_NOT_SET:
       break;
   }
-  throw CaseError(key, "set exactly one of box, polygon, extruded_polygon, half_space, terrain");
+  throw CaseError(key, "set exactly one of box, polygon, extruded_polygon, half_space, terrain, mesh");
 }
 
 // ---------------------------------------------------------------------------------------------

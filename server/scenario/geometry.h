@@ -7,6 +7,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -88,7 +90,7 @@ struct Face {
 // clipping uses; `faces` cover the whole surface with outward normals.
 class Shape {
  public:
-  enum class Kind { box, polygon, extruded_polygon, half_space, heightfield };
+  enum class Kind { box, polygon, extruded_polygon, half_space, heightfield, mesh };
 
   // `min`, `max`, `point`, `normal` are `dimensions`-component vectors as in the schema: (x, z) in
   // 2D. `polygon` vertices are (x, z) pairs. Invalid input throws CaseError naming `key`.
@@ -109,6 +111,14 @@ class Shape {
   static Shape heightfield(std::vector<double> x, std::vector<double> y, std::vector<double> lower,
                            std::vector<double> upper, int dimensions, const std::string& key);
 
+  // The solid bounded by a closed triangle mesh (3D; mesh_shape.cpp), triangles counter-clockwise
+  // seen from outside, already checked to be closed and consistently oriented (stl_solid.h). Its
+  // cells are vertical columns: the plan is split along the triangles' projected edges until no
+  // edge crosses a piece, and each piece is cut in z between the triangles above it, so every cell
+  // is exact (bounded by the mesh's own planes). A surface that crosses itself throws CaseError.
+  static Shape mesh(const std::vector<Vec3>& vertices, const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                    const std::string& key);
+
   Kind kind() const { return kind_; }
   int dimensions() const { return dimensions_; }
   bool contains(const Vec3& x) const;
@@ -124,6 +134,12 @@ class Shape {
   double y_min_ = 0.0, y_max_ = 0.0;      // extruded polygon
   std::vector<double> node_x_, node_y_, lower_, upper_;  // heightfield
   double height(const std::vector<double>& field, double x, double y) const;
+  // mesh: each cell's bounds and a uniform plan grid over bounds_ listing the cells that reach
+  // into each of its index_nx_ × index_ny_ squares, so that contains() tests a few cells.
+  std::vector<Aabb> cell_bounds_;
+  int index_nx_ = 0, index_ny_ = 0;
+  std::vector<std::vector<int>> index_;
+  bool mesh_contains(const Vec3& x) const;
   std::vector<ConvexCell> cells_;
   std::vector<Face> faces_;
   Aabb bounds_;

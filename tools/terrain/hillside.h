@@ -43,4 +43,14 @@ inline double thickness(double x, double y) {
 
 inline double bedrock(double x, double y) { return surface(x, y) - thickness(x, y); }
 
+// A house at the slope's toe, on the hollow's axis just above the lake's shore (elevation
+// 101–104 m there), in the slide's path: an L-shaped block (a 8 m × 6 m hall and a 4 m × 6 m
+// wing), founded down into the bedrock and roofed flat at 108 m. Its outline in map coordinates,
+// counter-clockwise seen from above, and its plan split into triangles of outline indices.
+// Whole metres, exact in the STL's float32.
+constexpr double kHouseOutline[6][2] = {{kX0 + 58, kY0 + 34}, {kX0 + 66, kY0 + 34}, {kX0 + 66, kY0 + 40},
+                                        {kX0 + 62, kY0 + 40}, {kX0 + 62, kY0 + 46}, {kX0 + 58, kY0 + 46}};
+constexpr int kHousePlan[4][3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 5}, {5, 3, 4}};
+constexpr double kHouseBase = 96.0, kHouseRoof = 108.0;  // m
+
 }  // namespace cascade::hillside
