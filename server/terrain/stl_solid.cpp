@@ -104,6 +104,16 @@ pb::SolidMesh read_stl(const std::string& path, const std::string& key, const Te
   return mesh;
 }
 
+// |(b − a) × (c − a)|², zero for a triangle whose vertices are on a line.
+double triangle_area2(const pb::SolidMesh& m, const std::uint32_t v[3]) {
+  double e[2][3];
+  for (int k = 0; k < 2; ++k)
+    for (int c = 0; c < 3; ++c) e[k][c] = m.vertices(3 * int(v[k + 1]) + c) - m.vertices(3 * int(v[0]) + c);
+  const double x = e[0][1] * e[1][2] - e[0][2] * e[1][1], y = e[0][2] * e[1][0] - e[0][0] * e[1][2],
+               z = e[0][0] * e[1][1] - e[0][1] * e[1][0];
+  return x * x + y * y + z * z;
+}
+
 double signed_volume(const pb::SolidMesh& m) {
   double six_v = 0.0;  // Σ a · (b × c) over the triangles, six times the enclosed volume
   for (int t = 0; t + 2 < m.triangles_size(); t += 3) {
@@ -128,8 +138,8 @@ bool names_stl_files(const pb::ScenarioSpec& spec) {
 
 std::string mesh_defect(const pb::SolidMesh& m) {
   if (m.vertices_size() % 3 != 0) return "vertices need 3 coordinates each (has " + std::to_string(m.vertices_size()) + ")";
-  for (double c : m.vertices())
-    if (!std::isfinite(c)) return "vertex coordinates must be finite numbers";
+  for (double c : m.vertices())  // beyond 10⁸ m (far off the Earth) the triangles' normals lose their meaning
+    if (!(std::abs(c) <= kMaxMeshCoordinate)) return "vertex coordinates must be finite numbers within ±1e8 m";
   if (m.triangles_size() % 3 != 0 || m.triangles_size() < 12)
     return "needs 3 vertex indices per triangle and at least 4 triangles (has " + std::to_string(m.triangles_size()) +
            " indices)";
@@ -145,8 +155,8 @@ std::string mesh_defect(const pb::SolidMesh& m) {
       v[k] = m.triangles(3 * t + k);
       if (v[k] >= nv) return "triangle " + std::to_string(t) + " names vertex " + std::to_string(v[k]) + " of " + std::to_string(nv);
     }
-    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
-      return "triangle " + std::to_string(t) + " at " + point_text(m, v[0]) + " repeats a vertex: it has no area";
+    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0] || triangle_area2(m, v) == 0.0)
+      return "triangle " + std::to_string(t) + " at " + point_text(m, v[0]) + " has no area (its vertices are on a line)";
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = v[k], b = v[(k + 1) % 3];
       edges[{std::min(a, b), std::max(a, b)}][a < b ? 0 : 1] += 1;

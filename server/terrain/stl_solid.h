@@ -15,6 +15,7 @@ namespace cascade {
 // with the triangles' crossings in plan; decimate larger meshes (a wall, a dam or a building
 // needs hundreds to a few thousand).
 constexpr int kMaxMeshTriangles = 20000;
+constexpr double kMaxMeshCoordinate = 1e8;  // m
 
 // Whether any body shape or subtracted shape names an STL file.
 bool names_stl_files(const cascade::v1::ScenarioSpec& spec);
