@@ -36,15 +36,25 @@ State = pb.Simulation.State
 
 class Client:
     """A connection to one cascade-server. `token`: a bearer token of its token file;
-    `root_certificates`: PEM bytes of the CA for a TLS server."""
+    `root_certificates`: PEM bytes of the CA for a TLS server; `options`: gRPC channel arguments,
+    e.g. (("grpc.max_reconnect_backoff_ms", 2000),) to reconnect soon after a server restart."""
 
-    def __init__(self, address, token=None, root_certificates=None):
+    def __init__(self, address, token=None, root_certificates=None, options=()):
         if root_certificates is None:
-            self._channel = grpc.insecure_channel(address)
+            self._channel = grpc.insecure_channel(address, options=list(options))
         else:
-            self._channel = grpc.secure_channel(address, grpc.ssl_channel_credentials(root_certificates))
+            self._channel = grpc.secure_channel(address, grpc.ssl_channel_credentials(root_certificates),
+                                                options=list(options))
         self._stub = pb_grpc.SimulationServiceStub(self._channel)
         self._metadata = (("authorization", f"Bearer {token}"),) if token else ()
+
+    def with_token(self, token):
+        """A Client on this one's channel that sends `token` instead (a dashboard calling for each
+        of its users, so that the server's roles decide); closing it closes the shared channel."""
+        other = object.__new__(Client)
+        other._channel, other._stub = self._channel, self._stub
+        other._metadata = (("authorization", f"Bearer {token}"),) if token else ()
+        return other
 
     def call(self, method, request, timeout=None):
         """A unary method of the stub by name, with the token."""
