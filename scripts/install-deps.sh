@@ -12,6 +12,8 @@ packages=(
   libvtk9-dev libgdal-dev
   python3 python3-numpy python3-h5py python3-matplotlib python3-yaml
   python3-grpcio python3-protobuf python3-grpc-tools
+  # the dashboard (clients/dashboard) and its browser test: Chart.js, headless Chromium, Selenium
+  libjs-chart.js chromium chromium-driver python3-selenium
   # the fuzz preset (scripts/fuzz.sh): clang, libFuzzer and clang's OpenMP runtime
   clang libfuzzer-14-dev libomp-14-dev
 )

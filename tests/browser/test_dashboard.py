@@ -29,6 +29,7 @@ import sys
 import tempfile
 import time
 import unittest
+import warnings
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "cli"))
 import clitest  # noqa: E402
@@ -97,6 +98,8 @@ def solver_rate(server, sim, seconds):
 class Dashboard(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
+        # Selenium leaves its HTTP connections to chromedriver for the garbage collector.
+        warnings.simplefilter("ignore", ResourceWarning)
         clitest.use_python_client()
         import cascade_client
         cls.cascade_client = cascade_client
