@@ -116,4 +116,5 @@ def act(client, token, body):
     except grpc.RpcError as e:
         raise Refused.of(e)
     raise Refused(400, "INVALID_ARGUMENT",
-                  f"action: {action!r} is not one of start, pause, resume, rain, rain_factor, ponding, checkpoint, fork")
+                  f"action: {action!r} is not one of start, pause, resume, rain, rain_factor, ponding, "
+                  "checkpoint, fork")

@@ -113,6 +113,8 @@ class Handler(BaseHTTPRequestHandler):
         role = self.app.access.role(self.token())
         selected = query.get("selected") or None
         view = (selected, query.get("field", "phase"), query.get("camera", "side")) if selected else None
+        if view and self.app.hub.state_of(selected) is None:
+            view = None  # gone (deleted, or a server restarted without it): the page selects another
         if view:
             self.app.frames.want(*view)
         try:
@@ -122,7 +124,7 @@ class Handler(BaseHTTPRequestHandler):
         self.app.hub.wait(version, LONG_POLL_SECONDS)
         body = self.app.hub.snapshot(selected)
         body["role"] = role
-        body["frame"] = self.app.frames.want(*view).describe() if view else None
+        body["frame"] = self.app.frames.want(*view).describe() if view and self.app.hub.state_of(selected) else None
         self.reply(200, body)
 
     def frame(self, query):

@@ -12,11 +12,13 @@ import time
 
 import grpc
 
+from actions import Refused
 from cascade_client import State
 
 FRAME_SECONDS = 1.0
 FEED_IDLE_SECONDS = 10.0
 WIDTH, HEIGHT = 640, 360
+MAX_FEEDS = 16
 
 
 class FrameFeed:
@@ -91,11 +93,17 @@ class Frames:
         threading.Thread(target=self._reap, name="frame reaper", daemon=True).start()
 
     def want(self, name, field, camera):
-        """The feed of this view, started if need be; marks it as watched now."""
+        """The feed of this view, started if need be; marks it as watched now. Refuses a view of a
+        simulation the server does not list, and more than MAX_FEEDS views at once (each is a
+        thread here and a stream on the server)."""
         key = (name, field, camera)
         with self.lock:
             feed = self.feeds.get(key)
             if feed is None or not feed.thread.is_alive():
+                if self.hub.state_of(name) is None:
+                    raise Refused(404, "NOT_FOUND", f"sim: the server lists no {name}")
+                if len(self.feeds) >= MAX_FEEDS:
+                    raise Refused(429, "RESOURCE_EXHAUSTED", f"frames: {MAX_FEEDS} views are watched already")
                 feed = self.feeds[key] = FrameFeed(self.hub, name, field, camera)
                 feed.thread.start()
             feed.wanted = time.monotonic()

@@ -16,7 +16,6 @@ server's part (copy, render, PNG, gRPC) and the dashboard's and browser's (long 
 import bisect
 import os
 import statistics
-import subprocess
 import sys
 import threading
 import time

@@ -20,7 +20,6 @@ Screenshots go to WORK_DIR/screenshots/. Run as tests/cli/test_*.py are (tests/C
         --source-dir . --work-dir /tmp/browser_dashboard
 """
 
-import json
 import os
 import pathlib
 import shutil
@@ -77,7 +76,8 @@ def browser(name):
     options = webdriver.ChromeOptions()
     for flag in CHROMIUM_FLAGS:
         options.add_argument(flag)
-    profile = tempfile.mkdtemp(prefix=f"cascade-chromium-{name}-", dir="/dev/shm" if os.path.isdir("/dev/shm") else None)
+    memory = "/dev/shm" if os.path.isdir("/dev/shm") else None
+    profile = tempfile.mkdtemp(prefix=f"cascade-chromium-{name}-", dir=memory)
     PROFILES.append(profile)
     options.add_argument("--user-data-dir=" + profile)
     return webdriver.Chrome(service=Service(CHROMEDRIVER, popen_kw={"preexec_fn": on_client_cpus}), options=options)
