@@ -10,9 +10,6 @@ parent's creation added.
 
 import argparse
 import pathlib
-import subprocess
-import tempfile
-import threading
 import time
 
 import python_client
@@ -40,39 +37,31 @@ def cpu_model():
     return "unknown"
 
 
-with tempfile.TemporaryDirectory() as data:
-    server = subprocess.Popen([str(build / "bin" / "cascade-server"), "--listen", "127.0.0.1:0", "--data-dir", data,
-                               "--threads", str(args.threads)], stderr=subprocess.PIPE, text=True)
-    address = server.stderr.readline().split("listening on ")[1].split(",")[0]
-    threading.Thread(target=server.stderr.read, daemon=True).start()  # drained, so that the server never blocks on it
-    try:
-        with cascade_client.Client(address) as client:
-            idle, _ = memory(server.pid)
-            start = time.perf_counter()
-            parent = client.create(args.case, overrides=args.set)
-            particles = parent.get().particle_count
-            created = time.perf_counter() - start
-            start = time.perf_counter()
-            parent.step(1)
-            parent_step = time.perf_counter() - start
-            before, _ = memory(server.pid)
-            start = time.perf_counter()
-            fork = client.simulation(parent.fork().name)
-            replied = time.perf_counter() - start
-            while not any("forked from" in e.message for e in fork.events()):
-                time.sleep(0.01)
-            ready = time.perf_counter() - start
-            after, peak = memory(server.pid)
-            start = time.perf_counter()
-            fork.step(1)
-            fork_step = time.perf_counter() - start
-            print(f"machine: {cpu_model()}, load average {pathlib.Path('/proc/loadavg').read_text().split()[0]}; "
-                  f"{args.case} {' '.join(args.set)}: {particles} particles, {args.threads} threads")
-            print(f"create {created:.2f} s (builds the case); one step: parent {parent_step:.3f} s, fork {fork_step:.3f} s")
-            print(f"fork: reply {replied:.3f} s, engine holding the state {ready:.3f} s")
-            print(f"server resident: idle {idle:.0f} MiB, with the parent {before:.0f} MiB (+{before - idle:.0f}), "
-                  f"with the fork {after:.0f} MiB (+{after - before:.0f}, {1048576 * (after - before) / particles:.0f} "
-                  f"bytes/particle), peak {peak:.0f} MiB")
-    finally:
-        server.terminate()
-        server.wait(timeout=60)
+with python_client.server(build, args.threads) as (server, address):
+    with cascade_client.Client(address) as client:
+        idle, _ = memory(server.pid)
+        start = time.perf_counter()
+        parent = client.create(args.case, overrides=args.set)
+        particles = parent.get().particle_count
+        created = time.perf_counter() - start
+        start = time.perf_counter()
+        parent.step(1)
+        parent_step = time.perf_counter() - start
+        before, _ = memory(server.pid)
+        start = time.perf_counter()
+        fork = client.simulation(parent.fork().name)
+        replied = time.perf_counter() - start
+        while not any("forked from" in e.message for e in fork.events()):
+            time.sleep(0.01)
+        ready = time.perf_counter() - start
+        after, peak = memory(server.pid)
+        start = time.perf_counter()
+        fork.step(1)
+        fork_step = time.perf_counter() - start
+        print(f"machine: {cpu_model()}, load average {pathlib.Path('/proc/loadavg').read_text().split()[0]}; "
+              f"{args.case} {' '.join(args.set)}: {particles} particles, {args.threads} threads")
+        print(f"create {created:.2f} s (builds the case); one step: parent {parent_step:.3f} s, fork {fork_step:.3f} s")
+        print(f"fork: reply {replied:.3f} s, engine holding the state {ready:.3f} s")
+        print(f"server resident: idle {idle:.0f} MiB, with the parent {before:.0f} MiB (+{before - idle:.0f}), "
+              f"with the fork {after:.0f} MiB (+{after - before:.0f}, {1048576 * (after - before) / particles:.0f} "
+              f"bytes/particle), peak {peak:.0f} MiB")

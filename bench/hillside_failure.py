@@ -13,8 +13,6 @@ import argparse
 import pathlib
 import subprocess
 import sys
-import tempfile
-import threading
 import time
 
 import python_client
@@ -33,41 +31,33 @@ def stage_switches(sim):
     return [e for e in sim.events() if e.kind == "stage_changed"]
 
 
-with tempfile.TemporaryDirectory() as data:
-    server = subprocess.Popen([str(build / "bin" / "cascade-server"), "--listen", "127.0.0.1:0", "--data-dir", data,
-                               "--threads", str(args.threads)], stderr=subprocess.PIPE, text=True)
-    address = server.stderr.readline().split("listening on ")[1].split(",")[0]
-    threading.Thread(target=server.stderr.read, daemon=True).start()  # drained, so that the server never blocks on it
-    try:
-        with cascade_client.Client(address) as client:
-            start = time.perf_counter()
-            # `cascade create` reads the rasters on the client and sends the spec (a case text
-            # naming rasters is refused by the server, which reads no files a request names).
-            subprocess.run([str(build / "bin" / "cascade"), "create", args.case, "--server", address, "--id", "hillside"],
-                           check=True, capture_output=True)
-            sim = client.simulation("hillside")
-            sim.start()
-            failure = None
-            while failure is None:
-                time.sleep(2.0)
-                got = sim.get()
-                # The pore-water stage's end: "rain -> slide: the slope moves: ..." (the geostatic
-                # start's own end hands over to the rain stage).
-                failure = next((e for e in stage_switches(sim) if e.message.startswith("rain -> ")), None)
-                if failure is None and (got.status.time > args.storm or
-                                        got.state in (cascade_client.State.COMPLETED, cascade_client.State.FAILED)):
-                    print(f"no failure: state {cascade_client.State.Name(got.state)}, t = {got.status.time:.0f} s, "
-                          f"stage {got.status.stage_name}: {got.failure_reason}")
-                    sys.exit(1)
-            sim.pause()
-            wall = time.perf_counter() - start
-            print(f"load average {pathlib.Path('/proc/loadavg').read_text().split()[0]}; {args.case}: "
-                  f"{got.particle_count} particles, {args.threads} threads")
-            print(f"failure {failure.time:.0f} s ({failure.time / 3600:.2f} h) into the {args.storm / 3600:.0f} h storm, "
-                  f"step {failure.step}, after {wall / 60:.1f} min of wall time")
-            print(f"  {failure.message}")
-            if not failure.time < args.storm:
+with python_client.server(build, args.threads) as (server, address):
+    with cascade_client.Client(address) as client:
+        start = time.perf_counter()
+        # `cascade create` reads the rasters on the client and sends the spec (a case text
+        # naming rasters is refused by the server, which reads no files a request names).
+        subprocess.run([str(build / "bin" / "cascade"), "create", args.case, "--server", address, "--id", "hillside"],
+                       check=True, capture_output=True)
+        sim = client.simulation("hillside")
+        sim.start()
+        failure = None
+        while failure is None:
+            time.sleep(2.0)
+            got = sim.get()
+            # The pore-water stage's end: "rain -> slide: the slope moves: ..." (the geostatic
+            # start's own end hands over to the rain stage).
+            failure = next((e for e in stage_switches(sim) if e.message.startswith("rain -> ")), None)
+            if failure is None and (got.status.time > args.storm or
+                                    got.state in (cascade_client.State.COMPLETED, cascade_client.State.FAILED)):
+                print(f"no failure: state {cascade_client.State.Name(got.state)}, t = {got.status.time:.0f} s, "
+                      f"stage {got.status.stage_name}: {got.failure_reason}")
                 sys.exit(1)
-    finally:
-        server.terminate()
-        server.wait(timeout=60)
+        sim.pause()
+        wall = time.perf_counter() - start
+        print(f"load average {pathlib.Path('/proc/loadavg').read_text().split()[0]}; {args.case}: "
+              f"{got.particle_count} particles, {args.threads} threads")
+        print(f"failure {failure.time:.0f} s ({failure.time / 3600:.2f} h) into the {args.storm / 3600:.0f} h storm, "
+              f"step {failure.step}, after {wall / 60:.1f} min of wall time")
+        print(f"  {failure.message}")
+        if not failure.time < args.storm:
+            sys.exit(1)

@@ -24,6 +24,7 @@
 #include "server/scenario/case_validation.h"
 #include "server/scenario/geometry.h"
 #include "server/scenario/particle_builder.h"
+#include "tests/unit/scratch_folder.h"
 
 namespace cascade {
 namespace {
@@ -95,19 +96,10 @@ std::string binary_stl(const Mesh& m) {
   return out;
 }
 
-class Scratch {
+// A scratch folder for this file's cases and inputs.
+class Scratch : public testing::ScratchFolder {
  public:
-  Scratch() : dir_(fs::temp_directory_path() / ("cascade_stl_" + std::to_string(::getpid()))) {
-    fs::create_directories(dir_);
-  }
-  ~Scratch() { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-    return (dir_ / name).string();
-  }
-
- private:
-  fs::path dir_;
+  Scratch() : ScratchFolder("cascade_stl") {}
 };
 
 // Water 0.3 m deep in a 1 m × 1 m tank (floor and four walls) around a solid `obstacle` (the YAML

@@ -19,6 +19,7 @@
 #include "server/scenario/case_error.h"
 #include "server/scenario/case_loader.h"
 #include "server/scenario/particle_builder.h"
+#include "tests/unit/scratch_folder.h"
 #include "server/terrain/raster.h"
 #include "tools/terrain/hillside.h"
 
@@ -53,21 +54,10 @@ double interpolation_bound() {
 }
 const double kInterpolation = interpolation_bound();
 
-// A scratch folder for cases and rasters, removed at the end.
-class Scratch {
+// A scratch folder for this file's cases and inputs.
+class Scratch : public testing::ScratchFolder {
  public:
-  Scratch() : dir_(fs::temp_directory_path() / ("cascade_terrain_" + std::to_string(::getpid()))) {
-    fs::create_directories(dir_);
-  }
-  ~Scratch() { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name) << text;
-    return (dir_ / name).string();
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
- private:
-  fs::path dir_;
+  Scratch() : ScratchFolder("cascade_terrain") {}
 };
 
 // A case on the hillside: bedrock, colluvium and a lake at 102 m, `terrain` the YAML of its
