@@ -334,6 +334,15 @@ class YamlMapper {
             : r->SetInt32(message, field, static_cast<int32_t>(v));
         return;
       }
+      case FieldDescriptor::CPPTYPE_UINT32: {  // a mesh's vertex indices
+        long long v = 0;
+        if (!plain_scalar(node) || !YAML::convert<long long>::decode(node, v) || v < 0 ||
+            v > std::numeric_limits<uint32_t>::max())
+          fail(key, mark, "expected a whole number >= 0, got " + describe(node));
+        add ? r->AddUInt32(message, field, static_cast<uint32_t>(v))
+            : r->SetUInt32(message, field, static_cast<uint32_t>(v));
+        return;
+      }
       case FieldDescriptor::CPPTYPE_BOOL: {
         bool v = false;
         if (!plain_scalar(node) || !YAML::convert<bool>::decode(node, v))

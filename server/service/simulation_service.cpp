@@ -187,7 +187,15 @@ grpc::Status SimulationService::create(const grpc::CallbackServerContext& contex
 grpc::ServerUnaryReactor* SimulationService::CreateSimulation(grpc::CallbackServerContext* context,
                                                               const v1::CreateSimulationRequest* request,
                                                               v1::Simulation* response) {
-  return finish(context, create(*context, *request, *response));
+  // A defect of the loader or builder (not of the case) answers INTERNAL with its text: uncaught,
+  // gRPC answered an empty UNIMPLEMENTED, which reads as a request that did not parse.
+  grpc::Status status;
+  try {
+    status = create(*context, *request, *response);
+  } catch (const std::exception& e) {
+    status = {grpc::StatusCode::INTERNAL, std::string("internal error while creating the simulation: ") + e.what()};
+  }
+  return finish(context, status);
 }
 
 grpc::ServerUnaryReactor* SimulationService::GetSimulation(grpc::CallbackServerContext* context,

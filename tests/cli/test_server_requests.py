@@ -40,6 +40,18 @@ class BadRequests(unittest.TestCase):
                     f.rainfall.region.min[:], f.rainfall.region.max[:] = kw["region"]
                 return pb.UpdateForcingRequest(name=name, forcing=f, update_mask=field_mask_pb2.FieldMask(paths=mask))
 
+            # The 3D dam break with its obstacle as a mesh: an STL file named in a text, which the
+            # server never reads, and a box's mesh with its top's second triangle missing (open).
+            dam = (clitest.SOURCE_DIR / "cases" / "dam_break_3d.yaml").read_text()
+            obstacle = "shape: {box: {min: [0.9, 0.24, 0.0], max: [1.02, 0.36, 0.45]}}"
+            assert obstacle in dam
+            box = [0.9, 0.24, 0.0, 1.02, 0.24, 0.0, 1.02, 0.36, 0.0, 0.9, 0.36, 0.0,
+                   0.9, 0.24, 0.45, 1.02, 0.24, 0.45, 1.02, 0.36, 0.45, 0.9, 0.36, 0.45]
+            open_box = [0, 2, 1, 0, 3, 2, 4, 5, 6, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6,
+                        3, 0, 4, 3, 4, 7]  # 11 triangles: 4, 6, 7 of the top is missing
+            stl_text = dam.replace(obstacle, "shape: {mesh: {stl_file: obstacle.stl}}")
+            open_text = dam.replace(obstacle, f"shape: {{mesh: {{vertices: {box}, triangles: {open_box}}}}}")
+
             nan, inf = math.nan, math.inf
             catalogue = [
                 ("GetSimulation", pb.GetSimulationRequest(name=""), C.INVALID_ARGUMENT, "name"),
@@ -112,6 +124,10 @@ class BadRequests(unittest.TestCase):
                  C.RESOURCE_EXHAUSTED, "particles"),
                 ("CreateSimulation", pb.CreateSimulationRequest(case_yaml="x" * (2 << 20)),
                  C.RESOURCE_EXHAUSTED, "case_yaml"),
+                ("CreateSimulation", pb.CreateSimulationRequest(case_yaml=stl_text),
+                 C.INVALID_ARGUMENT, "bodies[1].shape.mesh.stl_file"),
+                ("CreateSimulation", pb.CreateSimulationRequest(case_yaml=open_text),
+                 C.INVALID_ARGUMENT, "bodies[1].shape.mesh': the edge"),
             ]
             self.assertGreaterEqual(len(catalogue), 40)
             for method, request, code, field in catalogue:
