@@ -320,7 +320,7 @@ TEST(StlSolid, SpecsCarryTheMeshAndTheMeshIsChecked) {
             std::string::npos);
   // A case text may carry the mesh itself; its indices are whole numbers >= 0.
   EXPECT_NE(error_of([&] { load_case_text(tank_case("{mesh: {vertices: [0, 0, 0], triangles: [0, -1, 2]}}")); })
-                .find("expected a whole number >= 0, got -1"),
+                .find("bodies[1].shape.mesh.triangles[1]': expected a whole number >= 0, got '-1'"),
             std::string::npos);
   v1::ScenarioSpec broken = spec;
   broken.mutable_bodies(1)->mutable_shape()->mutable_mesh()->set_triangles(5, 99);
