@@ -200,6 +200,17 @@ Shape Shape::mesh(const std::vector<Vec3>& vertices, const std::vector<std::arra
     for (int t : piece.triangles)
       if (covers(tri[t], c)) column.emplace_back(tri[t].z_at(c), t);
     std::sort(column.begin(), column.end());
+    // Over the piece the triangles must keep their centre's order: the gap between two in turn is
+    // linear over the piece, so a crossing anywhere in it shows at one of its vertices.
+    for (std::size_t k = 0; k + 1 < column.size(); ++k) {
+      const Triangle &below = tri[column[k].second], &above = tri[column[k + 1].second];
+      const double slopes = below.normal.head<2>().norm() / std::abs(below.normal.z()) +
+                            above.normal.head<2>().norm() / std::abs(above.normal.z());
+      for (const Vec2& v : piece.vertices)
+        if (above.z_at(v) < below.z_at(v) - eps * (1.0 + slopes))
+          throw CaseError(key, "the mesh's surface crosses itself above map point (" + number_text(v.x()) + ", " +
+                                   number_text(v.y()) + ")");
+    }
     ConvexCell sides;
     for (const Line& l : piece.lines) {  // only the lines the piece touches: the others cut nothing
       bool touches = false;

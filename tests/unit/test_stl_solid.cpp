@@ -342,6 +342,26 @@ TEST(StlSolid, SpecsCarryTheMeshAndTheMeshIsChecked) {
   EXPECT_NE(error_of([&] { load_case_file(scratch.write("flat.yaml", text2d)); }).find("is a 3D shape"), std::string::npos);
 }
 
+// A closed, consistently oriented box whose top corner over (1, 0) is pulled down through its
+// floor: the top's triangle there crosses the floor's although, at the centres of the plan's
+// pieces, it still lies above it.
+TEST(StlSolid, SurfaceCrossingItselfInsideAColumnIsRefused) {
+  std::vector<Vec3> v = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, -0.5}, {1, 1, 1}, {0, 1, 1}};
+  // Floor and top split along the same diagonal (0, 0)–(1, 1): two plan pieces.
+  const std::vector<std::array<std::uint32_t, 3>> triangles = {
+      {0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+      {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  try {
+    Shape::mesh(v, triangles, "bodies[1].shape.mesh");
+    ADD_FAILURE() << "no error";
+  } catch (const CaseError& e) {
+    EXPECT_EQ(e.key(), "bodies[1].shape.mesh");
+    EXPECT_NE(e.message().find("crosses itself above map point (1, 0)"), std::string::npos) << e.what();
+  }
+  v[5].z() = 1.0;  // the box itself is fine
+  EXPECT_EQ(Shape::mesh(v, triangles, "mesh").cells().size(), 2u);
+}
+
 // An STL file written inside out (every normal inward) is the same solid: the loader turns it.
 TEST(StlSolid, InsideOutFileIsTurned) {
   Scratch scratch;
