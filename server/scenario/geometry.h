@@ -135,9 +135,9 @@ class Shape {
   std::vector<double> node_x_, node_y_, lower_, upper_;  // heightfield
   double height(const std::vector<double>& field, double x, double y) const;
   // mesh: each cell's bounds and a uniform plan grid over bounds_ listing the cells that reach
-  // into each of its index_nx_ × index_ny_ squares, so that contains() tests a few cells.
+  // into each of its index_n_ × index_n_ squares, so that contains() tests a few cells.
   std::vector<Aabb> cell_bounds_;
-  int index_nx_ = 0, index_ny_ = 0;
+  int index_n_ = 0;
   std::vector<std::vector<int>> index_;
   bool mesh_contains(const Vec3& x) const;
   std::vector<ConvexCell> cells_;

@@ -128,6 +128,12 @@ bool covers(const Triangle& t, const Vec2& x) {
 
 Plane vertical(const Line& l) { return {Vec3(l.normal.x(), l.normal.y(), 0.0), l.offset}; }
 
+// The column (along `axis`, 0 or 1) of an n × n plan grid over `bounds` that holds coordinate v:
+// one formula for filing the cells and for looking a point up, so both round alike.
+int grid_square(const Aabb& bounds, double v, int axis, int n) {
+  return std::clamp(int((v - bounds.lo[axis]) / (bounds.hi[axis] - bounds.lo[axis]) * n), 0, n - 1);
+}
+
 }  // namespace
 
 Shape Shape::mesh(const std::vector<Vec3>& vertices, const std::vector<std::array<std::uint32_t, 3>>& triangles,
@@ -243,27 +249,21 @@ Shape Shape::mesh(const std::vector<Vec3>& vertices, const std::vector<std::arra
 
   // The plan grid of contains(): about one cell per square.
   const int n = std::max(1, int(std::sqrt(double(s.cells_.size()))));
-  s.index_nx_ = s.index_ny_ = n;
+  s.index_n_ = n;
   s.index_.assign(std::size_t(n) * n, {});
-  const Vec3 extent = s.bounds_.hi - s.bounds_.lo;
-  const auto square = [&](double v, int axis) {
-    return std::clamp(int((v - s.bounds_.lo[axis]) / extent[axis] * n), 0, n - 1);
-  };
   for (int c = 0; c < int(s.cells_.size()); ++c) {
     const Aabb& b = s.cell_bounds_[c];
-    for (int j = square(b.lo.y(), 1); j <= square(b.hi.y(), 1); ++j)
-      for (int i = square(b.lo.x(), 0); i <= square(b.hi.x(), 0); ++i) s.index_[std::size_t(j) * n + i].push_back(c);
+    for (int j = grid_square(s.bounds_, b.lo.y(), 1, n); j <= grid_square(s.bounds_, b.hi.y(), 1, n); ++j)
+      for (int i = grid_square(s.bounds_, b.lo.x(), 0, n); i <= grid_square(s.bounds_, b.hi.x(), 0, n); ++i)
+        s.index_[std::size_t(j) * n + i].push_back(c);
   }
   return s;
 }
 
 bool Shape::mesh_contains(const Vec3& x) const {
   if (bounds_.squared_distance(x) > 0.0) return false;
-  const Vec3 extent = bounds_.hi - bounds_.lo;
-  const auto square = [&](int axis, int n) {
-    return std::clamp(int((x[axis] - bounds_.lo[axis]) / extent[axis] * n), 0, n - 1);
-  };
-  for (int c : index_[std::size_t(square(1, index_ny_)) * index_nx_ + square(0, index_nx_)])
+  const int i = grid_square(bounds_, x.x(), 0, index_n_), j = grid_square(bounds_, x.y(), 1, index_n_);
+  for (int c : index_[std::size_t(j) * index_n_ + i])
     if (cell_bounds_[c].squared_distance(x) == 0.0 && cells_[c].contains(x)) return true;
   return false;
 }

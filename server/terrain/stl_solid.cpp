@@ -8,6 +8,8 @@
 #include <vtkSTLReader.h>
 #include <vtkSmartPointer.h>
 
+#include <Eigen/Geometry>
+
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -33,9 +35,13 @@ void for_each_mesh(pb::ScenarioSpec& spec, F f) {
   }
 }
 
+Eigen::Vector3d vertex(const pb::SolidMesh& m, std::uint32_t v) {
+  return {m.vertices(3 * int(v)), m.vertices(3 * int(v) + 1), m.vertices(3 * int(v) + 2)};
+}
+
 std::string point_text(const pb::SolidMesh& m, std::uint32_t v) {
-  return "(" + number_text(m.vertices(3 * v)) + ", " + number_text(m.vertices(3 * v + 1)) + ", " +
-         number_text(m.vertices(3 * v + 2)) + ")";
+  const Eigen::Vector3d p = vertex(m, v);
+  return "(" + number_text(p.x()) + ", " + number_text(p.y()) + ", " + number_text(p.z()) + ")";
 }
 
 // A binary STL is an 80-byte header, a triangle count and 50 bytes per triangle; VTK's reader
@@ -106,34 +112,26 @@ pb::SolidMesh read_stl(const std::string& path, const std::string& key, const Te
 
 // |(b − a) × (c − a)|², zero for a triangle whose vertices are on a line.
 double triangle_area2(const pb::SolidMesh& m, const std::uint32_t v[3]) {
-  double e[2][3];
-  for (int k = 0; k < 2; ++k)
-    for (int c = 0; c < 3; ++c) e[k][c] = m.vertices(3 * int(v[k + 1]) + c) - m.vertices(3 * int(v[0]) + c);
-  const double x = e[0][1] * e[1][2] - e[0][2] * e[1][1], y = e[0][2] * e[1][0] - e[0][0] * e[1][2],
-               z = e[0][0] * e[1][1] - e[0][1] * e[1][0];
-  return x * x + y * y + z * z;
+  const Eigen::Vector3d a = vertex(m, v[0]);
+  return (vertex(m, v[1]) - a).cross(vertex(m, v[2]) - a).squaredNorm();
 }
 
 double signed_volume(const pb::SolidMesh& m) {
   double six_v = 0.0;  // Σ a · (b × c) over the triangles, six times the enclosed volume
-  for (int t = 0; t + 2 < m.triangles_size(); t += 3) {
-    double p[3][3];
-    for (int k = 0; k < 3; ++k)
-      for (int c = 0; c < 3; ++c) p[k][c] = m.vertices(3 * int(m.triangles(t + k)) + c);
-    six_v += p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) - p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
-             p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0]);
-  }
+  for (int t = 0; t + 2 < m.triangles_size(); t += 3)
+    six_v += vertex(m, m.triangles(t)).dot(vertex(m, m.triangles(t + 1)).cross(vertex(m, m.triangles(t + 2))));
   return six_v / 6.0;
 }
 
 }  // namespace
 
 bool names_stl_files(const pb::ScenarioSpec& spec) {
-  bool named = false;
-  for_each_mesh(const_cast<pb::ScenarioSpec&>(spec), [&](const std::string&, pb::SolidMesh& m) {
-    named = named || !m.stl_file().empty();
-  });
-  return named;
+  for (const pb::Body& b : spec.bodies()) {
+    if (b.shape().has_mesh() && !b.shape().mesh().stl_file().empty()) return true;
+    for (const pb::Shape& s : b.subtract())
+      if (s.has_mesh() && !s.mesh().stl_file().empty()) return true;
+  }
+  return false;
 }
 
 std::string mesh_defect(const pb::SolidMesh& m) {

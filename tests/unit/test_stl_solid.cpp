@@ -316,6 +316,9 @@ TEST(StlSolid, SpecsCarryTheMeshAndTheMeshIsChecked) {
     }
     return "";
   };
+  const auto spec_error = [&](const v1::ScenarioSpec& s) {
+    return error_of([&] { check_spec(s, [](const std::string& k, const std::string& msg) { throw CaseError(k, msg); }); });
+  };
   EXPECT_NE(error_of([&] { load_case_text(tank_case("{mesh: {stl_file: box.stl}}")); }).find("bodies[1].shape.mesh.stl_file"),
             std::string::npos);
   // A case text may carry the mesh itself; its indices are whole numbers >= 0.
@@ -324,17 +327,13 @@ TEST(StlSolid, SpecsCarryTheMeshAndTheMeshIsChecked) {
             std::string::npos);
   v1::ScenarioSpec broken = spec;
   broken.mutable_bodies(1)->mutable_shape()->mutable_mesh()->set_triangles(5, 99);
-  EXPECT_NE(error_of([&] { check_spec(broken, [](const std::string& k, const std::string& msg) { throw CaseError(k, msg); }); })
-                .find("names vertex 99"),
-            std::string::npos);
+  EXPECT_NE(spec_error(broken).find("names vertex 99"), std::string::npos);
   v1::ScenarioSpec inside_out = spec;
   for (int t = 0; t < 12; ++t) {
     auto* tri = inside_out.mutable_bodies(1)->mutable_shape()->mutable_mesh()->mutable_triangles();
     std::swap(*tri->Mutable(3 * t + 1), *tri->Mutable(3 * t + 2));
   }
-  EXPECT_NE(error_of([&] { check_spec(inside_out, [](const std::string& k, const std::string& msg) { throw CaseError(k, msg); }); })
-                .find("encloses no volume"),
-            std::string::npos);
+  EXPECT_NE(spec_error(inside_out).find("encloses no volume"), std::string::npos);
   const std::string text2d = "name: flat\ndimensions: 2\ndp: 0.05\nend_time: 1\ndomain: {min: [0, 0], max: [1, 1]}\n"
                              "gravity: [0, -9.81]\nmaterials:\n  - {name: water, water: {density: 1000}}\nbodies:\n"
                              "  - {name: wall, kind: boundary, shape: {mesh: {stl_file: box.stl}}}\n"
