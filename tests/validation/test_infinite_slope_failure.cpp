@@ -56,8 +56,12 @@
 //     a third run ends the rain stage when a 1 s trial of the dynamic engine from the stage's state
 //     brings soil to 0.1 m/s, tried every 20 min (half the 10% tolerance of the 6.6 h reference)
 //     while some soil is at yield; its switch against the model's own strength on the slope
-//     plane (the simple-shear time of check 1) within 10%, and the dynamic stage then moves the
-//     slope within 5 s. Against Lu & Godt within 10% it is a known failure, for check 1's reason.
+//     plane (the simple-shear time of check 1) within 10%, and against Mohr–Coulomb's strength of
+//     a soil that does not dilate (Davis 1968: in steady simple shear at dilatancy 0 the slope
+//     plane carries τ = c' cos φ' + σ'_n sin φ', the direct-shear result of Potts, Dounias & Vaughan
+//     1987) in Lu & Godt's expression within 10%; the dynamic stage then moves the slope within
+//     5 s. Against Lu & Godt with c', tan φ' (the strength of an associated soil, which dilates)
+//     within 10% it is a known failure, for check 1's reason.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -111,6 +115,7 @@ struct Outcome {
   double lu_godt_time = -1, lu_godt_depth = 0, lu_godt_se_time = -1;
   double switch_factor_of_safety = 0;                   // Lu & Godt's minimum over depth at the switch
   double simple_shear_time = -1;                        // the same with the model's simple-shear strength
+  double non_dilatant_time = -1;                        // the same with Davis' (1968) strength at dilatancy 0
   bool reference_valid = false;
   double drucker_prager_time = -1;                      // Eqs. 10a/11 with the analytic heads
   double seepage_dt = 0, first_dynamic_dt = 0, largest_dynamic_dt = 0, cfl = 0;
@@ -301,6 +306,19 @@ Outcome run_case(const std::vector<std::string>& overrides) {
         critical(stability(saturation, 3 * kCohesion / root, std::atan(3 * t / root)));
     if (sliding.found) out.simple_shear_time = sliding.time;
   }
+  // Mohr–Coulomb's strength on the slope plane for the case's soil, which does not dilate: in
+  // steady simple shear at dilatancy ψ the plane of zero extension carries
+  // τ = c* + σ'_n tan φ* with tan φ* = sin φ cos ψ / (1 − sin φ sin ψ) and
+  // c* = c cos φ cos ψ / (1 − sin φ sin ψ) (Davis 1968, "Theories of plasticity and the failure of
+  // soil masses", in I. K. Lee (ed.), Soil Mechanics: Selected Topics, Butterworths; for ψ = 0
+  // τ/σ'_n = sin φ', as Potts, Dounias & Vaughan 1987, Géotechnique 37(1), found in the direct shear
+  // box). Lu & Godt's expression with c*, φ* is the infinite slope of a non-dilatant Mohr–Coulomb
+  // soil; independent of Eq. 11's Drucker–Prager match.
+  {
+    const reference::SlopeCriticalState non_dilatant =
+        critical(stability(saturation, kCohesion * std::cos(kFriction), std::atan(std::sin(kFriction))));
+    if (non_dilatant.found) out.non_dilatant_time = non_dilatant.time;
+  }
 
   // Eqs. 10a and 11 (ERRATA.md) in each particle layer: the measured geostatic stress, shifted by
   // Δ(S_w p_w) I as the implicit stage does, with the analytic pressure there; the first time any
@@ -341,10 +359,10 @@ Outcome run_case(const std::vector<std::string>& overrides) {
               out.switch_time / 3600, out.yielded_low, out.yielded_high, out.switch_reason.c_str());
   std::printf("  Lu & Godt FS = 1 (chi = S_w): %.0f s (%.2f h) at vertical depth %.3f m (normal %.3f m), heads valid %d; "
               "with chi = S_e: %.0f s (%.2f h); FS at the switch %.3f; with the model's simple-shear strength (k_c, "
-              "3 alpha_phi): %.0f s (%.2f h)\n",
+              "3 alpha_phi): %.0f s (%.2f h); with Davis' non-dilatant strength (c cos phi, atan sin phi): %.0f s (%.2f h)\n",
               out.lu_godt_time, out.lu_godt_time / 3600, out.lu_godt_depth, out.lu_godt_depth * cb, int(out.reference_valid),
               out.lu_godt_se_time, out.lu_godt_se_time / 3600, out.switch_factor_of_safety, out.simple_shear_time,
-              out.simple_shear_time / 3600);
+              out.simple_shear_time / 3600, out.non_dilatant_time, out.non_dilatant_time / 3600);
   std::printf("  Drucker-Prager yield from the measured geostatic stress and SY heads: %.0f s (%.2f h), first in the "
               "layer at n = %.4f m; model switch %+.1f%% of it, %+.1f%% of Lu & Godt\n",
               out.drucker_prager_time, out.drucker_prager_time / 3600, out.drucker_prager_n,
@@ -467,24 +485,35 @@ TEST(InfiniteSlopeFailure, DynamicStageMovesTheSlopeHandedOverFailed) {
   validate_motion(o, "handed over at 1.1 × the Lu & Godt time");
 }
 
-// The model's own failure against the model's own strength on the slope plane (Lu & Godt's
-// expression with c = k_c, tan φ = 3α_φ: steady simple shear at constant volume, header check 1),
-// within the same 10%; the dynamic stage then moves the slope within 5 s.
-TEST(InfiniteSlopeFailure, StageSwitchByMotionAgainstTheModelsSimpleShearStrength) {
+// The model's own failure against two strengths on the slope plane for a soil that does not dilate,
+// each within the same 10%: the model's own (Lu & Godt's expression with c = k_c, tan φ = 3α_φ:
+// steady simple shear at constant volume, header check 1), and Mohr–Coulomb's (Lu & Godt's
+// expression with Davis' c*, φ*: run_case), independent of Eq. 11's match. The dynamic stage then
+// moves the slope within 5 s.
+TEST(InfiniteSlopeFailure, StageSwitchByMotionAgainstNonDilatantSlopeStrengths) {
   const Outcome& o = motion_switch();
   ASSERT_GT(o.simple_shear_time, 0);
+  ASSERT_GT(o.non_dilatant_time, 0);
   CASCADE_VALIDATE({.case_name = kCase,
                     .reference = "Lu & Godt's (2008) expression with the model's simple-shear strength (c = k_c, "
                                  "tan φ = 3α_φ) and Srivastava & Yeh's (1991) heads: the time FS reaches 1",
                     .metric = "rain stage's end by motion trials (s)", .measured = o.switch_time,
                     .reference_value = o.simple_shear_time, .tolerance = 0.1, .relative = true,
                     .tolerance_source = kTimeBound});
+  CASCADE_VALIDATE({.case_name = kCase,
+                    .reference = "Lu & Godt's (2008) factor of safety with Davis' (1968) strength of a non-dilatant "
+                                 "Mohr–Coulomb soil (c' cos φ', tan φ* = sin φ') and Srivastava & Yeh's (1991) heads: "
+                                 "the time FS reaches 1",
+                    .metric = "rain stage's end by motion trials (s)", .measured = o.switch_time,
+                    .reference_value = o.non_dilatant_time, .tolerance = 0.1, .relative = true,
+                    .tolerance_source = kTimeBound});
   validate_motion(o, "handed over by motion trials");
 }
 
-// Known failure, a reason in the model (header, check 1): the Drucker–Prager cone's friction in
-// simple shear, 3α_φ, is 17% below tan φ', and the slope fails by the model's strength, 20% before
-// Lu & Godt's Mohr–Coulomb time.
+// Known failure, a reason in the model (header, checks 1 and 4): the case's soil does not dilate,
+// and in simple shear its strength on the slope plane is below c' + σ'_n tan φ' (Davis' sin φ' for
+// Mohr–Coulomb, 4% below that the cone's 3α_φ of Eq. 11): the slope fails by the model's strength,
+// 18% before Lu & Godt's time with c', tan φ', which assumes a dilating (associated) soil.
 TEST(InfiniteSlopeFailure, StageSwitchByMotionAgainstLuGodtKnownFailure) {
   const Outcome& o = motion_switch();
   ASSERT_GT(o.lu_godt_time, 0);
