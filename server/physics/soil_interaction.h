@@ -199,8 +199,15 @@ struct SoilInteraction {
       return;
     }
     const Real rho_s = mixture_density(m, porosity, saturation, rho0);
-    // A material with the compression switch scales the viscosity by it (soil_viscosity_switch.h).
-    const Real viscosity_switch = m.viscosity_switch ? soil_viscosity_switch<Real, Dim>(gradient, c_s0, sph.h) : Real(1);
+    // A material with the compression switch scales the viscosity by it where the particle is at
+    // yield (soil_viscosity_switch.h); the suction p_c = −p_w as in the frames' yield ratio.
+    const Real viscosity_switch =
+        m.viscosity_switch
+            ? soil_viscosity_switch<Real, Dim>(
+                  gradient, c_s0, sph.h,
+                  m.mechanical.yield_ratio(tensor_of(Voigt<double>(soil.effective_stress[i].template cast<double>())),
+                                           -double(p.pressure[i]), double(soil.plastic_strain[i])))
+            : Real(1);
     const V acceleration = force / rho_s + viscosity_switch * viscous + sph.gravity +
                            soil_damping_acceleration(m, rho_s, sph.h, v_i);
     p.density_rate[i] = rho_i * divergence;

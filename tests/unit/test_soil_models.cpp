@@ -520,12 +520,13 @@ TEST(DruckerPragerPlaneStrain, BiaxialPeakMatchesMohrCoulomb) {
 
 // ---- The compression switch on the soil's artificial viscosity ----
 
-// L_ab = ∂v_a/∂x_b: simple shear and dilation switch the viscosity off, compression keeps it.
+// L_ab = ∂v_a/∂x_b: on a particle at yield, simple shear and dilation switch the viscosity off,
+// compression keeps it.
 TEST(SoilViscositySwitch, OffInShearAndDilationOnInCompression) {
   const double c = 65, h = 0.0075;  // the column collapse's c_s0 and h
   const double guard = 1e-4 * c / h;
-  const auto switch_2d = [&](const Mat<double, 2>& l) { return soil_viscosity_switch<double, 2>(l, c, h); };
-  const auto switch_3d = [&](const Mat<double, 3>& l) { return soil_viscosity_switch<double, 3>(l, c, h); };
+  const auto switch_2d = [&](const Mat<double, 2>& l) { return soil_viscosity_switch<double, 2>(l, c, h, 1.0); };
+  const auto switch_3d = [&](const Mat<double, 3>& l) { return soil_viscosity_switch<double, 3>(l, c, h, 1.0); };
   Mat<double, 2> shear, compression, dilation, shear_compression;
   shear << 0, 50, 0, 0;                  // v_x = 50 z: |∇×v| = 50, ∇·v = 0
   compression << -50, 0, 0, -50;         // ∇·v = −100
@@ -542,6 +543,23 @@ TEST(SoilViscositySwitch, OffInShearAndDilationOnInCompression) {
   rotation(1, 0) = 10;
   EXPECT_EQ(switch_3d(rotation), 0.0);
   EXPECT_DOUBLE_EQ(switch_3d(rotation - 10 * Mat<double, 3>::Identity()), 30 / (30 + 20 + guard));
+}
+
+// Inside the yield surface the particle is elastic, and its shear and dilation are the elastic
+// noise the viscosity damps: the factor is 1 there (Eq. 26b as printed), and the switch acts from
+// a yield ratio of 1 − 10⁻⁴ (on the cone to the return map's rounding) up to the apex's 10.
+TEST(SoilViscositySwitch, FullViscosityInsideTheYieldSurface) {
+  const double c = 65, h = 0.0075;
+  Mat<double, 2> shear;
+  shear << 0, 50, 0, 0;
+  for (double elastic : {0.0, 0.5, 0.9998})
+    EXPECT_EQ((soil_viscosity_switch<double, 2>(shear, c, h, elastic)), 1.0) << elastic;
+  for (double yielding : {0.99995, 1.0, kYieldRatioAtApex})
+    EXPECT_EQ((soil_viscosity_switch<double, 2>(shear, c, h, yielding)), 0.0) << yielding;
+  Mat<double, 3> shear_3d = Mat<double, 3>::Zero();
+  shear_3d(0, 2) = 50;
+  EXPECT_EQ((soil_viscosity_switch<double, 3>(shear_3d, c, h, 0.5)), 1.0);
+  EXPECT_EQ((soil_viscosity_switch<double, 3>(shear_3d, c, h, 1.0)), 0.0);
 }
 
 // ---- SoilModel ----
