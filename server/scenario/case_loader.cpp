@@ -313,6 +313,15 @@ class YamlMapper {
   // Numbers and booleans are plain scalars: a quoted "0.02" is text.
   static bool plain_scalar(const YAML::Node& node) { return node.IsScalar() && node.Tag() != "!"; }
 
+  // An integer field's value: a plain whole number within [lo, hi], else an error that says `what`.
+  long long whole_number(const YAML::Node& node, const YAML::Mark& mark, const std::string& key, long long lo,
+                         long long hi, const std::string& what) const {
+    long long v = 0;
+    if (!plain_scalar(node) || !YAML::convert<long long>::decode(node, v) || v < lo || v > hi)
+      fail(key, mark, "expected " + what + ", got " + describe(node));
+    return v;
+  }
+
   void set_scalar(const YAML::Node& node, const YAML::Mark& key_mark, Message* message, const FieldDescriptor* field,
                   const std::string& key, bool add) const {
     const Reflection* r = message->GetReflection();
@@ -326,21 +335,15 @@ class YamlMapper {
         return;
       }
       case FieldDescriptor::CPPTYPE_INT32: {
-        long long v = 0;
-        if (!plain_scalar(node) || !YAML::convert<long long>::decode(node, v) ||
-            v < std::numeric_limits<int32_t>::min() || v > std::numeric_limits<int32_t>::max())
-          fail(key, mark, "expected a whole number, got " + describe(node));
-        add ? r->AddInt32(message, field, static_cast<int32_t>(v))
-            : r->SetInt32(message, field, static_cast<int32_t>(v));
+        const auto v = static_cast<int32_t>(whole_number(node, mark, key, std::numeric_limits<int32_t>::min(),
+                                                         std::numeric_limits<int32_t>::max(), "a whole number"));
+        add ? r->AddInt32(message, field, v) : r->SetInt32(message, field, v);
         return;
       }
       case FieldDescriptor::CPPTYPE_UINT32: {  // a mesh's vertex indices
-        long long v = 0;
-        if (!plain_scalar(node) || !YAML::convert<long long>::decode(node, v) || v < 0 ||
-            v > std::numeric_limits<uint32_t>::max())
-          fail(key, mark, "expected a whole number >= 0, got " + describe(node));
-        add ? r->AddUInt32(message, field, static_cast<uint32_t>(v))
-            : r->SetUInt32(message, field, static_cast<uint32_t>(v));
+        const auto v = static_cast<uint32_t>(
+            whole_number(node, mark, key, 0, std::numeric_limits<uint32_t>::max(), "a whole number >= 0"));
+        add ? r->AddUInt32(message, field, v) : r->SetUInt32(message, field, v);
         return;
       }
       case FieldDescriptor::CPPTYPE_BOOL: {

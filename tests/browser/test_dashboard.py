@@ -33,7 +33,7 @@ import warnings
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "cli"))
 import clitest  # noqa: E402
-from test_server_load import scheduled_seconds  # noqa: E402  (tests/cli)
+from test_server_load import scheduled_seconds, solver_threads  # noqa: E402  (tests/cli)
 
 from selenium import webdriver  # noqa: E402  (Debian's python3-selenium)
 from selenium.webdriver.chrome.service import Service  # noqa: E402
@@ -82,15 +82,6 @@ def browser(name):
     PROFILES.append(profile)
     options.add_argument("--user-data-dir=" + profile)
     return webdriver.Chrome(service=Service(CHROMEDRIVER, popen_kw={"preexec_fn": on_client_cpus}), options=options)
-
-
-def solver_threads(server):
-    """/proc/PID/task/TID of the server's solver threads (session.cpp names them cascade-solver), in
-    the order their simulations were created (a session starts its thread when it is made; Linux
-    gives new threads rising ids)."""
-    tasks = [t for t in pathlib.Path(f"/proc/{server.process.pid}/task").iterdir()
-             if (t / "comm").read_text().strip() == "cascade-solver"]
-    return sorted(tasks, key=lambda t: int(t.name))
 
 
 def other_threads_seconds(server, solvers):

@@ -23,10 +23,18 @@ def steps_per_second(sim, seconds=MEASURE_SECONDS):
     return (sim.get().status.step - first) / (time.time() - start)
 
 
-def solver_thread(server):
-    """/proc/PID/task/TID of the server's one solver thread (session.cpp names it cascade-solver)."""
+def solver_threads(server):
+    """/proc/PID/task/TID of the server's solver threads (session.cpp names them cascade-solver), in
+    the order their simulations were created (a session starts its thread when it is made; Linux
+    gives new threads rising ids)."""
     tasks = [t for t in pathlib.Path(f"/proc/{server.process.pid}/task").iterdir()
              if (t / "comm").read_text().strip() == "cascade-solver"]
+    return sorted(tasks, key=lambda t: int(t.name))
+
+
+def solver_thread(server):
+    """/proc/PID/task/TID of the server's one solver thread."""
+    tasks = solver_threads(server)
     assert len(tasks) == 1, f"{len(tasks)} threads named cascade-solver"
     return tasks[0]
 
