@@ -94,6 +94,13 @@ class NeighbourList {
     capacity_ = std::uint32_t(std::ceil(1.25 * lattice / 8.0) * 8.0);
   }
 
+  // A copy has the slot count but no lists: it is built() again before use. The lists follow
+  // from the positions they were built at, which the engine keeps (Simulation::clone: a fork
+  // lists in its own thread instead of copying the largest array at its parent's step).
+  NeighbourList(const NeighbourList& other) : capacity_(other.capacity_) {}
+  NeighbourList& operator=(const NeighbourList&) = delete;
+  bool built() const { return built_; }
+
   // Builds the lists of the first `moving` particles, the moving ones (sorted by cell; `grid`
   // searches with the list radius).
   void build(const GridView<Real, Dim>& grid, const Vector<Vec<Real, Dim>>& position, std::size_t moving) {
@@ -108,6 +115,7 @@ class NeighbourList {
       if (longest <= capacity_) break;
       capacity_ = (longest + longest / 4 + 7) / 8 * 8;
     }
+    built_ = true;
   }
 
   NeighbourListView<Real, Dim> view() const { return {raw(count_), raw(index_), capacity_}; }
@@ -117,6 +125,7 @@ class NeighbourList {
 
  private:
   std::uint32_t capacity_;
+  bool built_ = false;
   Vector<std::uint32_t> count_, index_;
 };
 

@@ -107,7 +107,9 @@ class Simulation final : public Engine {
     density_gradients();
   }
 
-  // A member-wise copy (device arrays copied on the device); grid_ holds pointers into cells_'
+  // A member-wise copy (device arrays copied on the device) without the neighbour lists, which
+  // the copy builds again at its first step as restore() does (half of a 3D engine's bytes: the
+  // parent's step boundary then waits for the state only); grid_ holds pointers into cells_'
   // arrays, so the copy's view is taken again from its own.
   std::unique_ptr<Engine> clone() const override {
     auto copy = std::make_unique<Simulation>(*this);
@@ -116,6 +118,7 @@ class Simulation final : public Engine {
   }
 
   void step() override {
+    if (!neighbours_.built()) list_at_listed_positions();
     if (!lists_hold()) sort_by_cell();
     evaluate_rates(false);
     dt_ = next_time_step();
@@ -141,6 +144,7 @@ class Simulation final : public Engine {
   // reads the discharge of the state it starts from.
   void refresh_seepage() override {
     if (!has_soil_ || relaxing()) return;
+    if (!neighbours_.built()) list_at_listed_positions();
     if (!lists_hold()) sort_by_cell();
     launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
     pore_water_gradients();
@@ -217,14 +221,7 @@ class Simulation final : public Engine {
     forcing_ = s.forcing;
     if (has_soil_) initial_position_ = s.displacement_reference;
     pore_water_totals_ = std::vector<double>{s.pore_water.rain, s.pore_water.walls, s.pore_water.surface};
-    // The neighbour lists of the coming steps are those built at the listed positions, in the
-    // order the arrays are in (sorted by those positions' cells): sorting again there keeps that
-    // order (the sort is stable) and lists the same neighbours; the particles then go back to
-    // where they are now.
-    const Vector<V> now = position_;
-    position_ = listed_position_;
-    sort_by_cell();
-    position_ = now;
+    list_at_listed_positions();
   }
 
   std::size_t device_bytes() const override {
@@ -470,6 +467,17 @@ class Simulation final : public Engine {
     moving_ = cells_.moving();
     neighbours_.build(grid_, position_, moving_);
     thrust::copy(Backend::policy(), position_.begin(), position_.end(), listed_position_.begin());
+  }
+
+  // The neighbour lists of the coming steps are those built at the listed positions, in the
+  // order the arrays are in (sorted by those positions' cells): sorting again there keeps that
+  // order (the sort is stable) and lists the same neighbours; the particles then go back to
+  // where they are now. For a restored state and a clone.
+  void list_at_listed_positions() {
+    const Vector<V> now = position_;
+    position_ = listed_position_;
+    sort_by_cell();
+    position_ = now;
   }
 
   // Whether the cell sort and the neighbour lists of the last build still hold for the coming
