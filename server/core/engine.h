@@ -103,9 +103,10 @@ class Engine {
   // throws std::invalid_argument when the state belongs to another kind of engine or particle set.
   virtual EngineState state() const = 0;
   virtual void restore(const EngineState& state) = 0;
-  // An independent engine with this one's state on the same device, its neighbour lists
-  // included: its next steps give the same bits as this one's would (with the same number of
-  // threads). A fork (ForkSimulation) without state() and restore()'s host round trip.
+  // An independent engine with this one's state on the same device: its next steps give the
+  // same bits as this one's would (with the same number of threads). A fork (ForkSimulation)
+  // without state() and restore()'s host round trip; derived data that the state determines (the
+  // neighbour lists) may be left for the clone to rebuild at its first step.
   virtual std::unique_ptr<Engine> clone() const = 0;
   // After restore() of a state whose pore pressures another solver advanced (the implicit stage):
   // forms the seepage discharge (Eq. 27b) of those pressures, which frames report and the next

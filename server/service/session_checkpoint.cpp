@@ -57,8 +57,9 @@ std::filesystem::path Session::take_checkpoint(const std::string& caller) {
   return path;
 }
 
-// The fork's engine is this one's clone (one copy of the state, made on the device, lists
-// included, at the cost of a copy of the arrays to this simulation's step); the parent's journal
+// The fork's engine is this one's clone (one copy of the state, made on the device, at the cost
+// of a copy of the arrays to this simulation's step; the fork lists its neighbours itself at its
+// first step); the parent's journal
 // names the fork first, so that the fork's journal, a copy of the parent's, ends with the entry
 // that made it.
 std::shared_ptr<RestoreSource> Session::take_fork(const std::string& fork_name, const std::string& caller) {
