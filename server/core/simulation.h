@@ -118,8 +118,7 @@ class Simulation final : public Engine {
   }
 
   void step() override {
-    if (!neighbours_.built()) list_at_listed_positions();
-    if (!lists_hold()) sort_by_cell();
+    update_lists();
     evaluate_rates(false);
     dt_ = next_time_step();
     save_step_start();
@@ -144,8 +143,7 @@ class Simulation final : public Engine {
   // reads the discharge of the state it starts from.
   void refresh_seepage() override {
     if (!has_soil_ || relaxing()) return;
-    if (!neighbours_.built()) list_at_listed_positions();
-    if (!lists_hold()) sort_by_cell();
+    update_lists();
     launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
     pore_water_gradients();
     seepage_discharge();
@@ -478,6 +476,13 @@ class Simulation final : public Engine {
     position_ = listed_position_;
     sort_by_cell();
     position_ = now;
+  }
+
+  // The cell sort and neighbour lists for the coming evaluations: a clone's first (it has none),
+  // then kept while they hold and rebuilt at the current positions when they do not.
+  void update_lists() {
+    if (!neighbours_.built()) list_at_listed_positions();
+    if (!lists_hold()) sort_by_cell();
   }
 
   // Whether the cell sort and the neighbour lists of the last build still hold for the coming
