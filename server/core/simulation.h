@@ -519,7 +519,9 @@ class Simulation final : public Engine {
     launch(SoilInteraction<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_, surface_forcing(),
                                       water_.rho0, relaxing()},
            water, moving_);
-    launch(LocalDamping<Real, Dim>{view(), raw(unbalanced_acceleration_), Real(local_damping_)}, water, moving_);
+    // While relaxing the free water is damped too: its sloshing would load the soil it rests on.
+    launch(LocalDamping<Real, Dim>{view(), raw(unbalanced_acceleration_), Real(local_damping_)},
+           relaxing() ? 0u : water, moving_);
   }
 
   // The dummy particles' water values (Eqs. 30-35a); with soil, the free surface (Eq. 38, at the
@@ -738,7 +740,7 @@ class Simulation final : public Engine {
   // α of the local damping, 0 outside the geostatic stage; not in the checkpoint (state()): the
   // stage orchestrator sets it again after a restore().
   double local_damping_ = 0;
-  Vector<Real> unbalanced_acceleration_;  // per soil particle: |a| of the last evaluation before damping
+  Vector<Real> unbalanced_acceleration_;  // per particle: |a| of the last evaluation before damping (soil, and water while relaxing)
   Vector<PoreWaterInflow<Real>> pore_water_inflow_;  // per soil particle, of the last evaluation
   Vector<PoreWaterInflow<Real>> pore_water_blocks_;  // their block sums (account_pore_water)
   Vector<double> pore_water_totals_ = std::vector<double>(3, 0.0);  // rain, walls, surface since the clock's start

@@ -8,8 +8,9 @@
 // a force against the motion in proportion to the unbalanced force, not to the velocity: it takes
 // out energy where a particle accelerates and none at a steady state, and it needs no frequency
 // (a viscous damping would have to be tuned to the slope's lowest mode). α = 0 leaves a_i as it
-// is. Water particles are not damped (only the soil's geostatic state is relaxed), and a rigid
-// skeleton has a_i = 0.
+// is. While relaxing the free water is damped too (simulation.h): the lake a slope stands in must
+// come to rest with it, or its sloshing keeps loading the soil beside it. A rigid skeleton has
+// a_i = 0.
 //
 // The equilibrium measure of the stage: the unbalanced force on soil particle i is its undamped
 // net force F_i = m_i a_i with m_i = ρ_s,i V_i (Eq. 28a, V_i = m/ρ_i of Eq. 22); the stage
@@ -39,9 +40,10 @@ CASCADE_HD inline Vec<Real, Dim> locally_damped_acceleration(const Vec<Real, Dim
   return damped;
 }
 
-// Per soil particle, after its interaction pass: keeps |a_i| before damping (the unbalanced
-// acceleration of the equilibrium measure) and damps a_i. Run on every step, with α = 0 outside
-// the geostatic stage, so that the measure is that of the engine's last step in every stage.
+// Per soil (and, while relaxing, water) particle, after its interaction pass: keeps |a_i| before
+// damping (the unbalanced acceleration of the equilibrium measure, read over the soil) and damps
+// a_i. Run on every step, with α = 0 outside the geostatic stage, so that the measure is that of
+// the engine's last step in every stage.
 template <typename Real, int Dim>
 struct LocalDamping {
   ParticleView<Real, Dim> p;

@@ -1,28 +1,30 @@
-// The soil particle's right-hand side: one pass over its neighbours sums the numerical density
-// rate (Eq. 22), the momentum with Bishop's total stress and artificial viscosity (Eqs. 7, 26b),
-// the velocity gradient of the strain and spin rates (Eqs. 26c, 26d), the pore-water continuity
-// (Eq. 27a, pore_water_continuity.h) and the porosity rate (Eq. 26a), then the time-step limits
-// (Eqs. 40a-c). A material with damping adds the skeleton's velocity damping (soil_damping.h).
+// The soil particle's right-hand side: one pass over its neighbours sums the numerical density rate
+// (Eq. 22), the momentum with Bishop's total stress and artificial viscosity (Eqs. 7, 26b), the
+// velocity gradient of the strain and spin rates (Eqs. 26c, 26d), the pore-water continuity (Eq.
+// 27a, pore_water_continuity.h) and the porosity rate (Eq. 26a), then the time-step limits (Eqs.
+// 40a-c). A material with damping adds the skeleton's velocity damping (soil_damping.h).
 //
-// Neighbours: every phase counts in Eq. 22. Soil and dummy neighbours (the dummy's soil side:
-// total stress of Eq. 32a, velocity −v_g of Eq. 35a) add their total stress, the viscosity, the
-// velocity gradient and the pore water. A water neighbour j meets the soil particle i at the
-// soil-water interface (Section 3.3: the pressure condition there follows from the momentum
-// equations) through the pore pressures only: in Eq. 26b its pair is −(S_w,i p_w,i + p_j) I, the
-// pressure parts of σ_i and of its total stress −p_j I (Eq. 4), so the skeleton's σ'_i acts only
-// between soil particles and the skeleton is traction-free at the interface; and the pore-water
-// continuity (Eq. 27a) takes the volume change of its pair, V_j (v_j − v_i)·∇_i W_ij, beside the
-// skeleton's ε̇_v. Each pair's pressure force and volume change are then the adjoint pair of the
-// water's own Eqs. 23a-b, so the pressure work across the interface is conserved; with σ'_i in the
-// pair and the water's velocity left out, a lateral mode of the interface grew from round-off at
-// a rate that rose with K_w and E (docs/physics.md, "Soil-water interface"). The pair carries
-// compression only (interface_contact_pressure, water_momentum.h), and the water's volume change
-// enters the pore water in proportion to S_w,i, the wetted fraction of the pores. A rigid
-// skeleton (Section 4.1) keeps v = 0, its stress and porosity: only the pore water flows. The
-// seepage divergence of Eq. 27a is a sum of pairwise Darcy exchanges, with the rain of Eq. 39 a
-// source on the particle that tops its column (seepage_exchange.h). In the geostatic stage
-// (local_damping.h) the pore water is held: its density rate is zero, and the seepage limit of
-// Eq. 40c, for a diffusion not integrated then, does not bound the step.
+// Neighbours: every phase counts in Eq. 22. Soil and dummy neighbours (the dummy's soil side: total
+// stress of Eq. 32a, velocity −v_g of Eq. 35a) add their total stress, the viscosity, the velocity
+// gradient and the pore water. A water neighbour j meets the soil particle i at the soil-water
+// interface (Section 3.3: the pressure condition there follows from the momentum equations) through
+// the pressures only: in Eq. 26b its pair is −(p̂_i + p_j) I, with −p_j I the water's total stress
+// (Eq. 4) and p̂_i the pressure the soil shows the water (soil_shown_pressure, water_momentum.h):
+// where saturated S_w,i p_w,i, the pressure part of σ_i, so that the skeleton's σ'_i acts only
+// between soil particles and the skeleton is traction-free at the interface; where unsaturated at
+// least the water's own pressure, so that the skeleton carries it. The pore-water continuity (Eq.
+// 27a) takes the volume change of its pair, V_j (v_j − v_i)·∇_i W_ij, beside the skeleton's ε̇_v.
+// Each saturated pair's pressure force and volume change are then the adjoint pair of the water's
+// own Eqs. 23a-b, so the pressure work across the interface is conserved; with σ'_i in the pair and
+// the water's velocity left out, a lateral mode of the interface grew from round-off at a rate that
+// rose with K_w and E (docs/physics.md, "Soil-water interface"). The pair carries compression only
+// (interface_contact_pressure, water_momentum.h), and the water's volume change enters the pore
+// water in proportion to S_w,i, the wetted fraction of the pores. A rigid skeleton (Section 4.1)
+// keeps v = 0, its stress and porosity: only the pore water flows. The seepage divergence of Eq.
+// 27a is a sum of pairwise Darcy exchanges, with the rain of Eq. 39 a source on the particle that
+// tops its column (seepage_exchange.h). In the geostatic stage (local_damping.h) the pore water is
+// held: its density rate is zero, and the seepage limit of Eq. 40c, for a diffusion not integrated
+// then, does not bound the step.
 #pragma once
 
 #include <cmath>
@@ -112,7 +114,9 @@ struct SoilInteraction {
       };
       if (water) {
         first_moment += own_weight() * x_ij;  // no mass exchange with free water: a side that is there
-        const Real contact_pressure = interface_contact_pressure(pore_stress_i + p.pressure[j]);
+        const Real shown_i = soil_shown_pressure<Real, Dim>(soil.saturation[i], p.pressure[i], p.pressure[j], rho0,
+                                                             sph.gravity, x_ij);
+        const Real contact_pressure = interface_contact_pressure(shown_i + p.pressure[j]);
         force += stress_force_pair<Real, Dim>(volume_j, -contact_pressure * M::Identity(), grad_w);
         interface_divergence -= volume_j * v_ij.dot(grad_w);
         continue;

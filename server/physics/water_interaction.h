@@ -2,17 +2,18 @@
 // rate (Eq. 22), the water continuity with δ-SPH diffusion (Eq. 23a), the momentum with
 // artificial viscosity (Eq. 23b) and the per-particle time-step limit (Eq. 40a, 40b).
 //
-// A soil neighbour j enters Eq. 23b with the pressure its pore water exerts on the mixture,
-// S_w,j p_w,j (Bishop's pore stress of Eq. 7), not p_w,j: the soil particle's own pair with this
-// water particle is −(S_w,i p_w,i + p_j) (soil_interaction.h), so the two pair forces are equal
-// and opposite; and the suction of a dry skeleton (p_w = −10 kPa at S_w = 0.001) does not pull
-// free water into it (docs/physics.md, "Soil-water interface"). A saturated soil (S_w = 1) is
-// unchanged. The pair's pressure is held at zero or above: the contact between free water and the
-// skeleton carries no tension (interface_contact_pressure, water_momentum.h). So is a dummy
-// particle's pair, p_i + p_b >= 0: a wall pushes water, it never pulls it in (a water particle in
-// tension next to the slope under a sliding mass was drawn through the dummy layers; with the
-// impenetrable walls of wall_contact.h and the pair in tension, the storm demo's channel water
-// blew up 38 s after the failure: docs/physics.md, "Solid boundary").
+// A soil neighbour j enters Eq. 23b with the pressure it shows the water (soil_shown_pressure,
+// water_momentum.h): saturated, its pore water's S_w,j p_w,j (Bishop's pore stress of Eq. 7);
+// unsaturated, at least the water's own pressure carried to it, as a solid's. The soil particle's
+// own pair with this water particle takes the same pressure (soil_interaction.h), so the two pair
+// forces are equal and opposite; the suction of a dry skeleton (p_w = −10 kPa at S_w = 0.001)
+// neither pulls free water into it nor lets the water press into it as into a void
+// (docs/physics.md, "Soil-water interface"). The pair's pressure is held at zero or above: the
+// contact between free water and the skeleton carries no tension (interface_contact_pressure,
+// water_momentum.h). So is a dummy particle's pair, p_i + p_b >= 0: a wall pushes water, it never
+// pulls it in (a water particle in tension next to the slope under a sliding mass was drawn through
+// the dummy layers; with the impenetrable walls of wall_contact.h and the pair in tension, the
+// storm demo's channel water blew up 38 s after the failure: docs/physics.md, "Solid boundary").
 #pragma once
 
 #include <cmath>
@@ -68,8 +69,10 @@ struct WaterInteraction {
       divergence += velocity_divergence_pair(volume_j, v_ij, grad_w);
       const bool soil_j = saturation != nullptr && j >= grid.water_end && j < grid.moving_end;
       const Real pore_fraction_j = soil_j ? saturation[j] : Real(1);
-      const Real pore_pressure_j = pore_fraction_j * p.pressure[j];
-      // A soil pair's p_i + S_w,j p_w,j and a wall pair's p_i + p_b are held at >= 0 (compression
+      const Real pore_pressure_j =
+          soil_j ? soil_shown_pressure<Real, Dim>(pore_fraction_j, p.pressure[j], p_i, water.rho0, sph.gravity, -x_ij)
+                 : p.pressure[j];
+      // A soil pair's p_i + p̂_j and a wall pair's p_i + p_b are held at >= 0 (compression
       // only), written as p_i + p_j'.
       const bool wall_j = j >= grid.moving_end;
       const Real seen_pressure_j =

@@ -28,6 +28,28 @@ CASCADE_HD inline Real interface_contact_pressure(Real pair_pressure) {
   return pair_pressure > Real(0) ? pair_pressure : Real(0);
 }
 
+// The pressure a soil particle shows the free water across the interface. Saturated pores (p_w >= 0)
+// are continuous with the free water: they show their pore water's pressure S_w p_w (Bishop's pore
+// stress of Eq. 7; the paper's pressure continuity at the interface, Section 3.3). Unsaturated pores
+// (p_w < 0) hold air between the free water and their pore water: the mixture's surface then meets
+// the water as a solid, and its total traction balances the water's pressure (the skeleton carries
+// the difference as effective stress). It shows the water its own pressure carried hydrostatically
+// to the soil particle, p + ρ_w0 g·(x_s − x), as a wall's dummy does (docs/physics.md, "Solid
+// boundary"), or S_w p_w where that is higher. Before, the suction of unsaturated soil made it a void
+// to the water: at a lake's shore the water pressed into the slope and circulated there
+// (cases/lake_margin_2d.yaml). Both sides of a pair use it (water_interaction.h, soil_interaction.h),
+// so the pair forces stay equal and opposite. Saturated pores keep S_w p_w rather than the larger
+// of the two: there both are the same pressure up to the particles' noise, and the larger of them
+// biased the interface upwards (the submerged layer's buoyant weight 3.3% off at h/dp 1.5, 1.7%
+// with S_w p_w).
+template <typename Real, int Dim>
+CASCADE_HD inline Real soil_shown_pressure(Real saturation, Real pore_pressure, Real water_pressure, Real water_rho0,
+                                           const Vec<Real, Dim>& gravity, const Vec<Real, Dim>& soil_minus_water) {
+  const Real pore_stress = saturation * pore_pressure;
+  const Real carried = water_pressure + water_rho0 * gravity.dot(soil_minus_water);
+  return pore_pressure >= Real(0) || pore_stress > carried ? pore_stress : carried;
+}
+
 // μ_ij = h v_ij·x_ij / (|x_ij|² + η²) (Eq. 24c); also the pair term of the CFL limit (Eq. 40b).
 // Takes 1/(|x_ij|² + η²), which the δ-term of Eq. 24b shares.
 template <typename Real, int Dim>

@@ -288,6 +288,48 @@ TEST(GeostaticStart, FeiTsuiRoadRelaxesAndStaysAtRest) {
   walls.validate(case_name, "at the start and after the rest");
 }
 
+// A gentle slope entering a still lake (cases/lake_margin_2d.yaml): the lake's margin thins to
+// nothing over the colluvium, whose pores above the lake's level hold 7 kPa of suction, as at the
+// hillside's lake (cases/hillside_dem_3d.yaml). The water must find its rest against that soil as
+// against a solid (docs/physics.md, "Soil-water interface"): relaxed within the bound of the
+// slopes above, and no water carried into the slope, neither below its ground (deeper than dp/2
+// under z = 0.1 + 0.125 x) nor above the lake's level (a centre more than dp above z = 0.3).
+// No rest run: the saturated lake bed meets the 7 kPa of the colluvium at the lake's level, so the
+// pore water flows there as soon as it is released (the soil moved at up to 2.1 mm/s in the first
+// 0.05 s of a development run and then below 0.1 mm/s): what the slopes above check on a pore state in
+// equilibrium, this case cannot.
+TEST(GeostaticStart, LakeMarginUnderSuctionRelaxes) {
+  const std::string case_name = "A 7° slope under suction entering a lake, dp 0.04 m (cases/lake_margin_2d.yaml)";
+  testing::CaseRun run("lake_margin_2d.yaml");
+  testing::WallWatch walls(run.spec);  // issue 13, item 1
+  walls.sample(run.engine->frame());
+  constexpr std::uint64_t kMaxSteps = 20000;
+  const Relaxation r = relax(*run.engine, kMaxSteps);
+  expect_relaxed(case_name, r, kMaxSteps);
+  const FieldFrame f = run.engine->frame();
+  walls.sample(f);
+  walls.validate(case_name, "at the start and after the relaxation");
+  const double dp = run.config.dp;
+  std::size_t in_the_ground = 0, above_the_lake = 0, water = 0;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    if (f.phase[i] != std::uint8_t(Phase::water)) continue;
+    ++water;
+    const double x = f.position[3 * i], z = f.position[3 * i + 2];
+    if (0.1 + 0.125 * x - z > 0.5 * dp) ++in_the_ground;
+    if (z - 0.3 > dp) ++above_the_lake;
+  }
+  ASSERT_GT(water, std::size_t(0));
+  const std::string reference = "free water rests against unsaturated soil as against a solid (issue 13, item 3)";
+  CASCADE_VALIDATE({.case_name = case_name, .reference = reference,
+                    .metric = "water centres deeper than dp/2 below the ground after the relaxation",
+                    .measured = double(in_the_ground), .reference_value = 0, .bound = testing::Bound::at_most,
+                    .tolerance_source = "exact: a count"});
+  CASCADE_VALIDATE({.case_name = case_name, .reference = reference,
+                    .metric = "water centres more than dp above the lake's level after the relaxation",
+                    .measured = double(above_the_lake), .reference_value = 0, .bound = testing::Bound::at_most,
+                    .tolerance_source = "exact: a count"});
+}
+
 }  // namespace
 }  // namespace cascade
 
