@@ -71,7 +71,6 @@ struct SoilInteraction {
     const Real rho_w_i = p.water_density[i];
     const V grad_rho_i = p.water_density_gradient[i];
     const M stress_i = in_plane<Real, Dim>(total_stress(soil.effective_stress[i], soil.saturation[i], p.pressure[i]));
-    const Real pore_stress_i = soil.saturation[i] * p.pressure[i];  // S_w p_w of Eq. 7
     const Real c_s0 = Real(soil_sound_speed(m));
     const Real alpha_c0 = Real(m.viscosity_alpha) * c_s0;
     const std::uint32_t water_end = grid.water_end, moving_end = grid.moving_end;

@@ -68,15 +68,15 @@ struct WaterInteraction {
       const Vec<Real, Dim> v_ij = v_i - gather(p.velocity, j);
       divergence += velocity_divergence_pair(volume_j, v_ij, grad_w);
       const bool soil_j = saturation != nullptr && j >= grid.water_end && j < grid.moving_end;
-      const Real pore_fraction_j = soil_j ? saturation[j] : Real(1);
-      const Real pore_pressure_j =
-          soil_j ? soil_shown_pressure<Real, Dim>(pore_fraction_j, p.pressure[j], p_i, water.rho0, sph.gravity, -x_ij)
+      const Real saturation_j = soil_j ? saturation[j] : Real(1);
+      const Real shown_pressure_j =
+          soil_j ? soil_shown_pressure<Real, Dim>(saturation_j, p.pressure[j], p_i, water.rho0, sph.gravity, -x_ij)
                  : p.pressure[j];
       // A soil pair's p_i + p̂_j and a wall pair's p_i + p_b are held at >= 0 (compression
       // only), written as p_i + p_j'.
       const bool wall_j = j >= grid.moving_end;
       const Real seen_pressure_j =
-          (soil_j || wall_j) ? interface_contact_pressure(p_i + pore_pressure_j) - p_i : p.pressure[j];
+          (soil_j || wall_j) ? interface_contact_pressure(p_i + shown_pressure_j) - p_i : p.pressure[j];
       const Vec<Real, Dim> pressure = pressure_force_pair(volume_j, p_i, seen_pressure_j, grad_w);
       const Real inv_r2_eta2 = Real(1) / (r2 + sph.eta2);
       const Real mu = viscosity_mu(sph.h, v_ij, x_ij, inv_r2_eta2);
