@@ -86,6 +86,19 @@ struct GridView {
     return d;
   }
 
+  // Component A of x_i − x_j (0 past the dimension), x_j read from the position array: the form a
+  // neighbour loop with scalar sums takes, since GCC does not vectorise such a loop when it holds
+  // Eigen vectors (docs/performance.md, "The neighbour loops").
+  template <int A>
+  CASCADE_HD Real displacement_along(const Vec<Real, Dim>& xi, const Vec<Real, Dim>* position, std::uint32_t j) const {
+    if constexpr (A < Dim) {
+      const Real d = xi[A] - gather_component<A>(position, j);
+      return d - period[A] * Real(std::rint(d * inv_period[A]));
+    } else {
+      return Real(0);
+    }
+  }
+
   // Wraps a position back into the domain along periodic axes.
   CASCADE_HD void wrap(Vec<Real, Dim>& x) const {
     for (int a = 0; a < Dim; ++a)
@@ -97,18 +110,29 @@ struct GridView {
   // neighbours are deterministic.
   template <typename F>
   CASCADE_HD void for_each_neighbour(const Vec<Real, Dim>& x, const Vec<Real, Dim>* position, F&& f) const {
-    int c[Dim];
-    for (int a = 0; a < Dim; ++a) c[a] = cell_coordinate(x[a], a);
-    visit_cells(x, c, position, f);
+    for_each_range_in<0, int(kBlocks)>(x, [&](std::uint32_t begin, std::uint32_t end) {
+      visit_range(x, begin, end, position, f);
+    });
   }
 
   // As for_each_neighbour, over the particles of blocks [FirstBlock, EndBlock) only: 0 water,
   // 1 soil, 2 dummy (the ghost nodes of a dummy particle gather from one phase).
   template <int FirstBlock, int EndBlock, typename F>
   CASCADE_HD void for_each_neighbour_in(const Vec<Real, Dim>& x, const Vec<Real, Dim>* position, F&& f) const {
+    for_each_range_in<FirstBlock, EndBlock>(x, [&](std::uint32_t begin, std::uint32_t end) {
+      visit_range(x, begin, end, position, f);
+    });
+  }
+
+  // Calls f(begin, end) for each contiguous range of particles of blocks [FirstBlock, EndBlock) in
+  // the cells around position x: every particle within the search radius of x is in one of them,
+  // with others of the same cells. A pass that loops over a range itself, with the kernel zero
+  // beyond 2h, vectorises with contiguous reads (SolidBoundaryWater).
+  template <int FirstBlock, int EndBlock, typename F>
+  CASCADE_HD void for_each_range_in(const Vec<Real, Dim>& x, F&& f) const {
     int c[Dim];
     for (int a = 0; a < Dim; ++a) c[a] = cell_coordinate(x[a], a);
-    visit_cells<FirstBlock, EndBlock>(x, c, position, f);
+    visit_cells<FirstBlock, EndBlock>(c, f);
   }
 
   // As for_each_neighbour around particle i, searching from the cell it was sorted into. Every
@@ -124,24 +148,29 @@ struct GridView {
       c[a] = int(k % std::uint32_t(ncell[a]));
       k /= std::uint32_t(ncell[a]);
     }
-    visit_cells(position[i], c, position, f);
+    const Vec<Real, Dim> x = position[i];
+    visit_cells<0, int(kBlocks)>(c, [&](std::uint32_t begin, std::uint32_t end) {
+      visit_range(x, begin, end, position, f);
+    });
   }
 
  private:
-  template <int FirstBlock = 0, int EndBlock = int(kBlocks), typename F>
-  CASCADE_HD void visit_cells(const Vec<Real, Dim>& x, const int* c, const Vec<Real, Dim>* position, F& f) const {
+  // Calls range(begin, end) for the particles of blocks [FirstBlock, EndBlock) in the cells
+  // within kReach of cell c.
+  template <int FirstBlock, int EndBlock, typename F>
+  CASCADE_HD void visit_cells(const int* c, F&& range) const {
     if constexpr (Dim == 2) {
       for (int dz = -kReach; dz <= kReach; ++dz) {
         int cc[2] = {0, c[1] + dz};
         if (!wrap_cell(cc[1], 1)) continue;
-        visit_row<FirstBlock, EndBlock>(x, c[0], cc, position, f);
+        visit_row<FirstBlock, EndBlock>(c[0], cc, range);
       }
     } else {
       for (int dz = -kReach; dz <= kReach; ++dz) {
         for (int dy = -kReach; dy <= kReach; ++dy) {
           int cc[3] = {0, c[1] + dy, c[2] + dz};
           if (!wrap_cell(cc[1], 1) || !wrap_cell(cc[2], 2)) continue;
-          visit_row<FirstBlock, EndBlock>(x, c[0], cc, position, f);
+          visit_row<FirstBlock, EndBlock>(c[0], cc, range);
         }
       }
     }
@@ -157,7 +186,7 @@ struct GridView {
   // The cells cx-kReach..cx+kReach of one row along x: one contiguous range in each block (water,
   // soil, dummy) unless the row wraps around a periodic axis.
   template <int FirstBlock, int EndBlock, typename F>
-  CASCADE_HD void visit_row(const Vec<Real, Dim>& x, int cx, int* cc, const Vec<Real, Dim>* position, F& f) const {
+  CASCADE_HD void visit_row(int cx, int* cc, F& range) const {
     const int n0 = ncell[0];
     const std::uint32_t cells = cell_count();
     int lo = cx - kReach, hi = cx + kReach;
@@ -168,15 +197,14 @@ struct GridView {
       const std::uint32_t first = key(cc);
       cc[0] = hi;
       const std::uint32_t last = key(cc);
-      for (int b = FirstBlock; b < EndBlock; ++b)
-        visit_range(x, cell_start[b * cells + first], cell_start[b * cells + last + 1], position, f);
+      for (int b = FirstBlock; b < EndBlock; ++b) range(cell_start[b * cells + first], cell_start[b * cells + last + 1]);
       return;
     }
     for (int cxn = lo; cxn <= hi; ++cxn) {
       cc[0] = cxn;
       if (!wrap_cell(cc[0], 0)) continue;
       const std::uint32_t k = key(cc);
-      for (int b = FirstBlock; b < EndBlock; ++b) visit_range(x, cell_start[b * cells + k], cell_start[b * cells + k + 1], position, f);
+      for (int b = FirstBlock; b < EndBlock; ++b) range(cell_start[b * cells + k], cell_start[b * cells + k + 1]);
     }
   }
 

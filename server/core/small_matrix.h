@@ -6,6 +6,13 @@
 
 namespace cascade {
 
+// Position of element (a, b) of a symmetric 3×3 matrix stored as its six sums xx, xy, xz, yy, yz,
+// zz (the neighbour loops' moments, which are symmetric since ∇_i W_ij = F x_ij).
+CASCADE_HD constexpr int symmetric_index(int a, int b) {
+  const int low = a < b ? a : b, high = a < b ? b : a;
+  return low == 0 ? high : low == 1 ? 2 + high : 5;
+}
+
 template <typename Real>
 CASCADE_HD inline Real determinant(const Eigen::Matrix<Real, 2, 2>& m) {
   return m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0);

@@ -40,6 +40,21 @@ CASCADE_HD inline Vec<Real, Dim> gather(const Vec<Real, Dim>* array, std::uint32
   return v;
 }
 
+// Component A of element j of an array of vectors (0 past the dimension), as gather reads it.
+template <int A, typename Real, int Dim>
+CASCADE_HD inline Real gather_component(const Vec<Real, Dim>* array, std::uint32_t j) {
+  if constexpr (A < Dim) return array->data()[std::uint32_t(Dim) * j + std::uint32_t(A)];
+  else return Real(0);
+}
+
+// Component A of a vector, 0 past its dimension: a neighbour loop written once for 2D and 3D
+// sums each component in a scalar of its own (OpenMP keeps scalar reductions in registers).
+template <int A, typename Real, int Dim>
+CASCADE_HD inline Real component(const Vec<Real, Dim>& v) {
+  if constexpr (A < Dim) return v[A];
+  else return Real(0);
+}
+
 // The bits of a non-negative float or double as an unsigned integer: for x, y >= 0 the integers
 // order as the numbers do (IEEE 754), and a NaN compares above infinity. A neighbour loop takes
 // the maximum of a non-negative quantity over these, since GCC vectorises an integer maximum

@@ -13,4 +13,11 @@ CASCADE_HD inline Real velocity_divergence_pair(Real volume_j, const Vec<Real, D
   return volume_j * v_ij.dot(grad_w);
 }
 
+// The same with ∇_i W_ij = F x_ij written out: V_j F (v_ij·x_ij), for the neighbour loops that sum
+// scalars (docs/performance.md, "The neighbour loops").
+template <typename Real>
+CASCADE_HD inline Real velocity_divergence_pair(Real volume_j, Real gradient_factor, Real v_ij_dot_x_ij) {
+  return volume_j * gradient_factor * v_ij_dot_x_ij;
+}
+
 }  // namespace cascade

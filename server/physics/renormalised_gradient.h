@@ -51,67 +51,70 @@ struct RenormalisedDensityGradient {
     const Real rho_w_i = p.water_density[i];
     if constexpr (!PoreWater) p.pressure[i] = water.pressure(rho_w_i);
     const Vec<Real, Dim> x_i = p.position[i];
-    Real moment_sum[Dim * Dim] = {};  // column-major, as Eigen's Mat
-    Real gradient_sum[Dim] = {};
     const std::uint32_t* list = neighbours.entries(i);
     const std::uint32_t count = neighbours.size(i);
-    // Neighbours of the other medium, [other_begin, other_end), take no part.
-    const std::uint32_t other_begin = PoreWater ? 0u : grid.water_end;
-    const std::uint32_t other_end = PoreWater ? grid.water_end : grid.moving_end;
-    const std::uint32_t dummy_begin = grid.moving_end;
-    Real pressure_sum[Dim] = {};   // PoreWater: Σ V_j (p_j − p_w,i) ∇_i W_ij, free water included
-    Real pressure_moment_sum[Dim * Dim] = {};  // PoreWater: its Σ V_j ∇_i W_ij ⊗ x_ij
-    Real bulk_modulus = 0;
+    const std::uint32_t water_end = grid.water_end, dummy_begin = grid.moving_end;
+    Real bulk_modulus = 1;
     if constexpr (PoreWater) bulk_modulus = Real(soil.materials[soil.material[i]].water_bulk_modulus);
     const Real p_i = p.pressure[i];
-    CASCADE_SIMD(reduction(+ : moment_sum[:Dim * Dim], gradient_sum[:Dim], pressure_sum[:Dim], pressure_moment_sum[:Dim * Dim]))
+    // Each sum is a scalar of its own and the loop holds no Eigen vector: GCC then vectorises it
+    // with the sums in registers (docs/performance.md, "The neighbour loops"). ∇_i W_ij = F x_ij,
+    // so the moments V_j ∇_i W_ij ⊗ x_ij are symmetric: six sums each.
+    Real g0 = 0, g1 = 0, g2 = 0;  // Σ V_j (ρ_w,j − ρ_w,i) ∇_i W_ij over the particle's own medium
+    Real m00 = 0, m01 = 0, m02 = 0, m11 = 0, m12 = 0, m22 = 0;  // its Σ V_j ∇_i W_ij ⊗ x_ij
+    Real q0 = 0, q1 = 0, q2 = 0;  // PoreWater: Σ V_j (p_j − p_w,i) ∇_i W_ij, free water included
+    Real n00 = 0, n01 = 0, n02 = 0, n11 = 0, n12 = 0, n22 = 0;  // PoreWater: its Σ V_j ∇_i W_ij ⊗ x_ij
+    CASCADE_SIMD(reduction(+ : g0, g1, g2, m00, m01, m02, m11, m12, m22, q0, q1, q2, n00, n01, n02, n11, n12, n22))
     for (std::uint32_t k = 0; k < count; ++k) {
       const std::uint32_t j = list[k];
-      const Vec<Real, Dim> x_ij = grid.displacement(x_i, gather(p.position, j));
-      // Zero beyond the support 2h.
-      bool other_medium;
-      if constexpr (PoreWater) other_medium = j < other_end;  // other_begin is 0
-      else other_medium = (j >= other_begin) & (j < other_end);
-      const Real same_medium = other_medium ? Real(0) : Real(1);
-      const Real volume = same_medium * sph.mass / p.density[j];
-      const Vec<Real, Dim> grad_w = sph.kernel.gradient_factor(std::sqrt(x_ij.squaredNorm())) * x_ij;
+      const Real x0 = grid.template displacement_along<0>(x_i, p.position, j);
+      const Real x1 = grid.template displacement_along<1>(x_i, p.position, j);
+      const Real x2 = grid.template displacement_along<2>(x_i, p.position, j);
+      // V_j F, zero beyond the support 2h.
+      const Real volume_factor = sph.mass / p.density[j] * sph.kernel.gradient_factor(std::sqrt(x0 * x0 + x1 * x1 + x2 * x2));
+      // Neighbours of the other medium take no part: the soil for the water, the free water for
+      // the soil's pore water (a factor, not a branch: the loop stays vectorised).
+      const bool other_medium = PoreWater ? j < water_end : (j >= water_end) & (j < dummy_begin);
+      const Real weight = other_medium ? Real(0) : volume_factor;
       Real rho_w_j = p.water_density[j];
-      Real pressure_difference = 0, pressure_volume = 0;
       if constexpr (PoreWater) {
         const bool dummy = j >= dummy_begin;
-        // Both loads are made in a vectorised loop: the dummy index stays in range.
-        const Real p_j = dummy ? soil.dummy_pore_pressure[dummy ? j - dummy_begin : 0u] : p.pressure[j];
+        // Both loads are made and blended by a 0/1 factor (exact for finite pressures): GCC
+        // would otherwise mask them, which it cannot do for these gathers, and leave the loop
+        // scalar. The dummy index stays in range.
+        const Real dummy_p_j = soil.dummy_pore_pressure[dummy ? j - dummy_begin : 0u];
+        const Real own_p_j = p.pressure[j];
+        const Real dummy_factor = dummy ? Real(1) : Real(0);
+        const Real p_j = dummy_factor * dummy_p_j + (Real(1) - dummy_factor) * own_p_j;
         if (dummy) rho_w_j = rho0 * (Real(1) + p_j / bulk_modulus);
-        pressure_volume = sph.mass / p.density[j];
-        pressure_difference = pressure_volume * (p_j - p_i);
+        const Real pressure_weight = volume_factor * (p_j - p_i);
+        q0 += pressure_weight * x0, q1 += pressure_weight * x1, q2 += pressure_weight * x2;
+        n00 += volume_factor * x0 * x0, n01 += volume_factor * x0 * x1, n02 += volume_factor * x0 * x2;
+        n11 += volume_factor * x1 * x1, n12 += volume_factor * x1 * x2, n22 += volume_factor * x2 * x2;
       }
-      const Real difference = volume * (rho_w_j - rho_w_i);
-      for (int a = 0; a < Dim; ++a) {
-        gradient_sum[a] += difference * grad_w[a];
-        pressure_sum[a] += pressure_difference * grad_w[a];
-        for (int b = 0; b < Dim; ++b) {
-          moment_sum[b * Dim + a] += volume * grad_w[a] * x_ij[b];  // V ∇W ⊗ x_ij
-          if constexpr (PoreWater) pressure_moment_sum[b * Dim + a] += pressure_volume * grad_w[a] * x_ij[b];
-        }
-      }
+      const Real difference = weight * (rho_w_j - rho_w_i);
+      g0 += difference * x0, g1 += difference * x1, g2 += difference * x2;
+      m00 += weight * x0 * x0, m01 += weight * x0 * x1, m02 += weight * x0 * x2;
+      m11 += weight * x1 * x1, m12 += weight * x1 * x2, m22 += weight * x2 * x2;
     }
-    // Σ V_j ∇_i W_ij ⊗ x_ji = −Σ V_j ∇_i W_ij ⊗ x_ij
-    const Mat<Real, Dim> moment = -Eigen::Map<const Mat<Real, Dim>>(moment_sum);
-    const Vec<Real, Dim> sum = Eigen::Map<const Vec<Real, Dim>>(gradient_sum);
-    const Real det = determinant(moment);
-    const bool invertible = std::fabs(det) > kMinDeterminant;
-    const Mat<Real, Dim> correction = invertible ? inverse(moment, det) : Mat<Real, Dim>::Identity();
-    p.water_density_gradient[i] = correction * sum;
-    if constexpr (PoreWater) {
-      const Mat<Real, Dim> pressure_moment = -Eigen::Map<const Mat<Real, Dim>>(pressure_moment_sum);
-      const Real pressure_det = determinant(pressure_moment);
-      const Mat<Real, Dim> pressure_correction = std::fabs(pressure_det) > kMinDeterminant
-                                                     ? inverse(pressure_moment, pressure_det)
-                                                     : Mat<Real, Dim>::Identity();
-      // Into the seepage array, which SeepageDischarge (seepage.h), the next pass, turns into q_w in
-      // place: the gradient needs no array of its own.
-      soil.seepage[i] = pressure_correction * Eigen::Map<const Vec<Real, Dim>>(pressure_sum);
+    p.water_density_gradient[i] = renormalised({g0, g1, g2}, {m00, m01, m02, m11, m12, m22});
+    // Into the seepage array, which SeepageDischarge (seepage.h), the next pass, turns into q_w in
+    // place: the gradient needs no array of its own.
+    if constexpr (PoreWater) soil.seepage[i] = renormalised({q0, q1, q2}, {n00, n01, n02, n11, n12, n22});
+  }
+
+ private:
+  // L_i times the sum, L_i = (Σ_j V_j ∇_i W_ij ⊗ x_ji)⁻¹ = (−moment)⁻¹ (Eq. 25b); the sum itself
+  // where the matrix is singular. moment holds xx, xy, xz, yy, yz, zz.
+  CASCADE_HD static Vec<Real, Dim> renormalised(const Real (&sum)[3], const Real (&moment)[6]) {
+    Vec<Real, Dim> gradient;
+    Mat<Real, Dim> matrix;
+    for (int a = 0; a < Dim; ++a) {
+      gradient[a] = sum[a];
+      for (int b = 0; b < Dim; ++b) matrix(a, b) = -moment[symmetric_index(a, b)];
     }
+    const Real det = determinant(matrix);
+    return std::fabs(det) > kMinDeterminant ? Vec<Real, Dim>(inverse(matrix, det) * gradient) : gradient;
   }
 };
 

@@ -98,7 +98,8 @@ struct SoilInteraction {
       const Real r2 = x_ij.squaredNorm();
       if (!(r2 < sph.kernel.support2)) continue;
       const Real volume_j = sph.mass / p.density[j];
-      const V grad_w = sph.kernel.gradient_factor(std::sqrt(r2)) * x_ij;
+      const Real gradient_factor = sph.kernel.gradient_factor(std::sqrt(r2));
+      const V grad_w = gradient_factor * x_ij;
       const bool water = j < water_end, dummy = j >= moving_end;
       const V v_j = dummy ? soil.dummy_velocity[j - moving_end] : p.velocity[j];
       const V v_ij = v_i - v_j;
@@ -129,8 +130,8 @@ struct SoilInteraction {
       viscous += artificial_viscosity_pair(alpha_c0, sph.mass, rho_i, p.density[j], mu, grad_w);
       gradient -= volume_j * v_ij * grad_w.transpose();
       if (!dummy) {
-        diffusion += density_diffusion_pair(volume_j, rho_w_i, p.water_density[j], x_ij, inv_r2_eta2, grad_rho_i,
-                                            p.water_density_gradient[j], grad_w);
+        diffusion += density_diffusion_pair(volume_j, gradient_factor, rho_w_i, p.water_density[j], r2, inv_r2_eta2,
+                                            (grad_rho_i + p.water_density_gradient[j]).dot(x_ij));
         const V driving = driving_i + Real(0.5) * (soil.skeleton_acceleration[i] - soil.skeleton_acceleration[j]);
         const Real potential = seepage_potential_difference<Real, Dim>(
             p.pressure[i], p.pressure[j], Real(0.5) * (rho_w_i + p.water_density[j]), driving, x_ij);

@@ -75,6 +75,77 @@ struct GhostInterpolation {
   CASCADE_HD Vec<Real, Dim> ghost_velocity() const { return velocity / shepard; }
 };
 
+// The sums of Eqs. 30, 31, 33 and 34a over the water around a ghost node g, each a scalar of its
+// own, with ∇_g W_gj = F x_gj. add() sums over a list of particles in a loop that vectorises
+// (docs/performance.md, "The neighbour loops"); interpolation() assembles what
+// GhostInterpolation::add would have summed.
+template <typename Real, int Dim>
+struct WaterGhostSums {
+  Real w_sum = 0, w_rho = 0;                        // Σ W V, Σ W V ρ_w
+  Real wx[3] = {};                                  // Σ W V x_gj
+  Real fx[3] = {};                                  // Σ F V x_gj = Σ ∇W V
+  Real f_rho[3] = {};                               // Σ ∇W V ρ_w
+  Real fxx[6] = {};                                 // Σ F V x_gj ⊗ x_gj: xx, xy, xz, yy, yz, zz
+  Real wv[3] = {};                                  // Σ W V v_j
+  bool any_water = false;                           // water within the search radius (2h and the skin)
+
+  // The arguments by value: read through a pointer, GCC does not take them for loop invariants.
+  CASCADE_HD void add(GridView<Real, Dim> grid, SphConstants<Real, Dim> sph, ParticleView<Real, Dim> p,
+                      Vec<Real, Dim> x_g, const std::uint32_t* list, std::uint32_t count) {
+    Real s_w = w_sum, s_w_rho = w_rho, wx0 = wx[0], wx1 = wx[1], wx2 = wx[2], f0 = fx[0], f1 = fx[1], f2 = fx[2];
+    Real f_rho0 = f_rho[0], f_rho1 = f_rho[1], f_rho2 = f_rho[2];
+    Real fxx00 = fxx[0], fxx01 = fxx[1], fxx02 = fxx[2], fxx11 = fxx[3], fxx12 = fxx[4], fxx22 = fxx[5];
+    Real wv0 = wv[0], wv1 = wv[1], wv2 = wv[2];
+    CASCADE_SIMD(reduction(+ : s_w, s_w_rho, wx0, wx1, wx2, f0, f1, f2, f_rho0, f_rho1, f_rho2, fxx00, fxx01, fxx02,
+                           fxx11, fxx12, fxx22, wv0, wv1, wv2))
+    for (std::uint32_t k = 0; k < count; ++k) {
+      const std::uint32_t j = list[k];
+      const Real x0 = grid.template displacement_along<0>(x_g, p.position, j);
+      const Real x1 = grid.template displacement_along<1>(x_g, p.position, j);
+      const Real x2 = grid.template displacement_along<2>(x_g, p.position, j);
+      const Real r2 = x0 * x0 + x1 * x1 + x2 * x2;
+      const Real r = std::sqrt(r2);
+      const Real volume = sph.mass / p.density[j];
+      const Real w = sph.kernel.value(r) * volume;
+      const Real f = sph.kernel.gradient_factor(r) * volume;
+      const Real rho_w = p.water_density[j];
+      s_w += w;
+      s_w_rho += w * rho_w;
+      wx0 += w * x0, wx1 += w * x1, wx2 += w * x2;
+      f0 += f * x0, f1 += f * x1, f2 += f * x2;
+      f_rho0 += f * x0 * rho_w, f_rho1 += f * x1 * rho_w, f_rho2 += f * x2 * rho_w;
+      fxx00 += f * x0 * x0, fxx01 += f * x0 * x1, fxx02 += f * x0 * x2;
+      fxx11 += f * x1 * x1, fxx12 += f * x1 * x2, fxx22 += f * x2 * x2;
+      wv0 += w * gather_component<0>(p.velocity, j);
+      wv1 += w * gather_component<1>(p.velocity, j);
+      wv2 += w * gather_component<2>(p.velocity, j);
+    }
+    w_sum = s_w, w_rho = s_w_rho;
+    wx[0] = wx0, wx[1] = wx1, wx[2] = wx2, fx[0] = f0, fx[1] = f1, fx[2] = f2;
+    f_rho[0] = f_rho0, f_rho[1] = f_rho1, f_rho[2] = f_rho2;
+    fxx[0] = fxx00, fxx[1] = fxx01, fxx[2] = fxx02, fxx[3] = fxx11, fxx[4] = fxx12, fxx[5] = fxx22;
+    wv[0] = wv0, wv[1] = wv1, wv[2] = wv2;
+    any_water = any_water || count > 0;
+  }
+
+  // A_g (Eq. 31) and the right-hand side of Eq. 30: rows (W, ∂_x W, ...) V_j, columns
+  // (1, x_j − x_g, ...) = (1, −x_gj, ...).
+  CASCADE_HD GhostInterpolation<Real, Dim, 1> interpolation() const {
+    GhostInterpolation<Real, Dim, 1> ghost;
+    ghost.a(0, 0) = w_sum;
+    ghost.rhs(0, 0) = w_rho;
+    ghost.shepard = w_sum;
+    for (int r = 0; r < Dim; ++r) {
+      ghost.a(0, 1 + r) = -wx[r];
+      ghost.a(1 + r, 0) = fx[r];
+      ghost.rhs(1 + r, 0) = f_rho[r];
+      ghost.velocity[r] = wv[r];
+      for (int c = 0; c < Dim; ++c) ghost.a(1 + r, 1 + c) = -fxx[symmetric_index(r, c)];
+    }
+    return ghost;
+  }
+};
+
 // Water side of the solid boundary: p_w of each dummy particle from the water around its ghost
 // node (Eqs. 30, 31, 33b) and the hydrostatic gradient, ρ_w from p_w (Eq. 6), velocity from
 // Eqs. 34a, 35a. A dummy particle with no water near its ghost node rests at ρ_w0.
@@ -95,18 +166,32 @@ struct SolidBoundaryWater {
     if (p.phase[b] != Phase::boundary) return;
     if (half_step && wet && !wet[b]) return;
     const Vec<Real, Dim> x_g = p.ghost[b];
-    GhostInterpolation<Real, Dim, 1> ghost;
-    bool any_water = false;
+    // The water within the search radius is listed in chunks, each summed in a vectorised loop.
+    // The listing has no branch on the distance (an index is written, then kept or overwritten):
+    // whether a candidate of the cells lies within the radius is near random, and mispredicted
+    // branches cost more than the stores.
+    WaterGhostSums<Real, Dim> sums;
+    constexpr std::uint32_t kChunk = 128;
+    std::uint32_t listed[kChunk];
+    std::uint32_t count = 0;
     using Grid = GridView<Real, Dim>;
-    grid.template for_each_neighbour_in<Grid::kWaterBlock, Grid::kWaterBlock + 1>(
-        x_g, p.position, [&](std::uint32_t j, const Vec<Real, Dim>& x_gj, Real r2) {
-      any_water = true;
-      const Real r = std::sqrt(r2);
-      const Real volume = sph.mass / p.density[j];
-      Eigen::Matrix<Real, 1, 1> value;
-      value(0) = p.water_density[j];
-      ghost.add(volume, sph.kernel.value(r), sph.kernel.gradient_factor(r) * x_gj, x_gj, value, p.velocity[j]);
+    grid.template for_each_range_in<Grid::kWaterBlock, Grid::kWaterBlock + 1>(
+        x_g, [&](std::uint32_t begin, std::uint32_t end) {
+      for (std::uint32_t j = begin; j < end; ++j) {
+        const Real x0 = grid.template displacement_along<0>(x_g, p.position, j);
+        const Real x1 = grid.template displacement_along<1>(x_g, p.position, j);
+        const Real x2 = grid.template displacement_along<2>(x_g, p.position, j);
+        listed[count] = j;
+        count += x0 * x0 + x1 * x1 + x2 * x2 < grid.search2 ? 1u : 0u;
+        if (count == kChunk) {
+          sums.add(grid, sph, p, x_g, listed, count);
+          count = 0;
+        }
+      }
     });
+    sums.add(grid, sph, p, x_g, listed, count);
+    const bool any_water = sums.any_water;
+    const GhostInterpolation<Real, Dim, 1> ghost = sums.interpolation();
     if (wet && !half_step) wet[b] = any_water ? 1 : 0;
     if (ghost.empty()) {
       p.water_density[b] = water.rho0;

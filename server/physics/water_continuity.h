@@ -11,12 +11,13 @@ namespace cascade {
 // For a linear density field the two parts cancel pair by pair, so hydrostatic water keeps its
 // density gradient. Eq. 23a multiplies the sum by δ h c_w0.
 // Takes 1/(|x_ij|² + η²), which μ_ij of Eq. 24c shares.
-template <typename Real, int Dim>
-CASCADE_HD inline Real density_diffusion_pair(Real volume_j, Real rho_w_i, Real rho_w_j, const Vec<Real, Dim>& x_ij,
-                                              Real inv_r2_eta2, const Vec<Real, Dim>& grad_rho_i,
-                                              const Vec<Real, Dim>& grad_rho_j, const Vec<Real, Dim>& grad_w) {
-  const Vec<Real, Dim> psi = (Real(2) * (rho_w_i - rho_w_j) * inv_r2_eta2) * x_ij - (grad_rho_i + grad_rho_j);
-  return volume_j * psi.dot(grad_w);
+// Written with ∇_i W_ij = F x_ij, so that V_j ψ_ij·∇_i W_ij = V_j F ψ_ij·x_ij with
+//   ψ_ij·x_ij = 2 (ρ_w,i − ρ_w,j) |x_ij|² / (|x_ij|² + η²) − (⟨∇ρ_w⟩_i^L + ⟨∇ρ_w⟩_j^L)·x_ij;
+// gradient_sum_along is the last dot product, F the kernel's gradient_factor.
+template <typename Real>
+CASCADE_HD inline Real density_diffusion_pair(Real volume_j, Real gradient_factor, Real rho_w_i, Real rho_w_j, Real r2,
+                                              Real inv_r2_eta2, Real gradient_sum_along) {
+  return volume_j * gradient_factor * (Real(2) * (rho_w_i - rho_w_j) * r2 * inv_r2_eta2 - gradient_sum_along);
 }
 
 }  // namespace cascade

@@ -40,6 +40,14 @@ struct WaterInteraction {
 
   CASCADE_HD void operator()(std::uint32_t i) const {
     if (p.phase[i] != Phase::water) return;
+    // Compiled twice: without soil (saturation == nullptr) the loop drops the soil's terms.
+    if (saturation != nullptr) interact<true>(i);
+    else interact<false>(i);
+  }
+
+ private:
+  template <bool WithSoil>
+  CASCADE_HD void interact(std::uint32_t i) const {
     const Vec<Real, Dim> x_i = p.position[i];
     const Vec<Real, Dim> v_i = p.velocity[i];
     const Real rho_i = p.density[i];
@@ -47,60 +55,76 @@ struct WaterInteraction {
     const Real p_i = p.pressure[i];
     const Vec<Real, Dim> grad_rho_i = p.water_density_gradient[i];
     const Real alpha_c0 = water.alpha * water.c0;
+    const Real inv_rho_i = Real(1) / rho_i;
+    // The loop reads these as scalars: components of Eigen vectors are not hoisted out of it.
+    const Real v_i0 = component<0>(v_i), v_i1 = component<1>(v_i), v_i2 = component<2>(v_i);
+    const Real grad_rho_i0 = component<0>(grad_rho_i), grad_rho_i1 = component<1>(grad_rho_i),
+               grad_rho_i2 = component<2>(grad_rho_i);
+    const Real g0 = component<0>(sph.gravity), g1 = component<1>(sph.gravity), g2 = component<2>(sph.gravity);
 
+    // Each sum is a scalar of its own and the loop holds no Eigen vector: GCC then vectorises it
+    // with the sums in registers (docs/performance.md, "The neighbour loops"). ∇_i W_ij = F x_ij.
     Real divergence = 0;  // Σ V_j (v_i − v_j)·∇_i W_ij
     Real diffusion = 0;   // Σ V_j ψ_ij·∇_i W_ij over water neighbours
-    Real pressure_sum[Dim] = {};
-    Real viscous_sum[Dim] = {};
+    Real a0 = 0, a1 = 0, a2 = 0;  // Σ [−V_j (p_i + p_j)/ρ_i + Π_ij] ∇_i W_ij, Eq. 23b without gravity
     auto max_mu_bits = ordered_bits(Real(0));  // max_j |μ_ij| within the support
 
     const std::uint32_t* list = neighbours.entries(i);
     const std::uint32_t count = neighbours.size(i);
-    CASCADE_SIMD(reduction(+ : divergence, diffusion, pressure_sum[:Dim], viscous_sum[:Dim]) reduction(max : max_mu_bits))
+    CASCADE_SIMD(reduction(+ : divergence, diffusion, a0, a1, a2) reduction(max : max_mu_bits))
     for (std::uint32_t k = 0; k < count; ++k) {
       const std::uint32_t j = list[k];
-      const Vec<Real, Dim> x_ij = grid.displacement(x_i, gather(p.position, j));
-      const Real r2 = x_ij.squaredNorm();
+      const Real x0 = grid.template displacement_along<0>(x_i, p.position, j);
+      const Real x1 = grid.template displacement_along<1>(x_i, p.position, j);
+      const Real x2 = grid.template displacement_along<2>(x_i, p.position, j);
+      const Real r2 = x0 * x0 + x1 * x1 + x2 * x2;
       const Real rho_j = p.density[j];
       const Real volume_j = sph.mass / rho_j;
       // Zero beyond the support 2h, so the list's skin entries add nothing below.
-      const Vec<Real, Dim> grad_w = sph.kernel.gradient_factor(std::sqrt(r2)) * x_ij;
-      const Vec<Real, Dim> v_ij = v_i - gather(p.velocity, j);
-      divergence += velocity_divergence_pair(volume_j, v_ij, grad_w);
-      const bool soil_j = saturation != nullptr && j >= grid.water_end && j < grid.moving_end;
+      const Real factor = sph.kernel.gradient_factor(std::sqrt(r2));
+      const Real v_ij_dot_x_ij = (v_i0 - gather_component<0>(p.velocity, j)) * x0 +
+                                 (v_i1 - gather_component<1>(p.velocity, j)) * x1 +
+                                 (v_i2 - gather_component<2>(p.velocity, j)) * x2;
+      divergence += velocity_divergence_pair(volume_j, factor, v_ij_dot_x_ij);
+      const bool soil_j = WithSoil && j >= grid.water_end && j < grid.moving_end;
       const Real saturation_j = soil_j ? saturation[j] : Real(1);
+      // g·(x_j − x_i) = −g·x_ij
+      const Real gravity_along = -(g0 * x0 + g1 * x1 + g2 * x2);
       const Real shown_pressure_j =
-          soil_j ? soil_shown_pressure<Real, Dim>(saturation_j, p.pressure[j], p_i, water.rho0, sph.gravity, -x_ij)
-                 : p.pressure[j];
+          soil_j ? soil_shown_pressure(saturation_j, p.pressure[j], p_i, water.rho0, gravity_along) : p.pressure[j];
       // A soil pair's p_i + p̂_j and a wall pair's p_i + p_b are held at >= 0 (compression
       // only), written as p_i + p_j'.
       const bool wall_j = j >= grid.moving_end;
       const Real seen_pressure_j =
           (soil_j || wall_j) ? interface_contact_pressure(p_i + shown_pressure_j) - p_i : p.pressure[j];
-      const Vec<Real, Dim> pressure = pressure_force_pair(volume_j, p_i, seen_pressure_j, grad_w);
       const Real inv_r2_eta2 = Real(1) / (r2 + sph.eta2);
-      const Real mu = viscosity_mu(sph.h, v_ij, x_ij, inv_r2_eta2);
+      const Real mu = viscosity_mu(sph.h, v_ij_dot_x_ij, inv_r2_eta2);
       // |μ_ij| within the support, 0 for the list's skin entries (a mask, not a branch).
       auto mu_bits = ordered_bits(std::fabs(mu));
       mu_bits &= decltype(mu_bits)(0) - decltype(mu_bits)(r2 < sph.kernel.support2);
       max_mu_bits = max_mu_bits > mu_bits ? max_mu_bits : mu_bits;
-      const Vec<Real, Dim> viscous = artificial_viscosity_pair(alpha_c0, sph.mass, rho_i, rho_j, mu, grad_w);
-      for (int a = 0; a < Dim; ++a) {
-        pressure_sum[a] += pressure[a];
-        viscous_sum[a] += viscous[a];
-      }
+      const Real force = (pressure_force_coefficient(volume_j, p_i, seen_pressure_j) * inv_rho_i +
+                          artificial_viscosity_coefficient(alpha_c0, sph.mass, rho_i, rho_j, mu)) *
+                         factor;
+      a0 += force * x0;
+      a1 += force * x1;
+      a2 += force * x2;
       // Dummy particles take no part in the diffusion: it would move water mass into walls.
       const Real water_j = j < grid.water_end ? Real(1) : Real(0);
-      diffusion += water_j * density_diffusion_pair(volume_j, rho_w_i, p.water_density[j], x_ij, inv_r2_eta2,
-                                                    grad_rho_i, gather(p.water_density_gradient, j), grad_w);
+      const Real gradient_sum_along =
+          (grad_rho_i0 + gather_component<0>(p.water_density_gradient, j)) * x0 +
+          (grad_rho_i1 + gather_component<1>(p.water_density_gradient, j)) * x1 +
+          (grad_rho_i2 + gather_component<2>(p.water_density_gradient, j)) * x2;
+      diffusion += water_j * density_diffusion_pair(volume_j, factor, rho_w_i, p.water_density[j], r2, inv_r2_eta2,
+                                                    gradient_sum_along);
     }
     const Real max_mu = from_ordered_bits<Real>(max_mu_bits);
-    const Vec<Real, Dim> pressure_force = Eigen::Map<const Vec<Real, Dim>>(pressure_sum);
-    const Vec<Real, Dim> viscous = Eigen::Map<const Vec<Real, Dim>>(viscous_sum);
+    const Real a[3] = {a0, a1, a2};
 
     p.density_rate[i] = rho_i * divergence;
     p.water_density_rate[i] = rho_w_i * divergence + water.delta * sph.h * water.c0 * diffusion;
-    const Vec<Real, Dim> acceleration = pressure_force / rho_i + viscous + sph.gravity;
+    Vec<Real, Dim> acceleration = sph.gravity;
+    for (int d = 0; d < Dim; ++d) acceleration[d] += a[d];
     p.acceleration[i] = acceleration;
     // Eq. 40b (sound speed and the largest pair μ) and Eq. 40a (force); C0 applies after the min.
     const Real dt_cv = sph.h / (water.c0 + max_mu);

@@ -5,13 +5,18 @@
 
 namespace cascade {
 
-// One neighbour's −V_j (p_i + p_j) ∇_i W_ij. The sum is divided by ρ_i, the numerical density
+// One neighbour's −V_j (p_i + p_j) ∇_i W_ij (the coefficient −V_j (p_i + p_j) of ∇_i W_ij alone, for
+// the neighbour loops that sum scalars). The sum is divided by ρ_i, the numerical density
 // that defines V_i = m/ρ_i, so that the pair force −V_i V_j (p_i + p_j) ∇_i W_ij acting on i is
 // exactly the opposite of the one acting on j and Σ m v is conserved to round-off
 // (docs/physics.md, "Water momentum").
+template <typename Real>
+CASCADE_HD inline Real pressure_force_coefficient(Real volume_j, Real p_i, Real p_j) {
+  return -volume_j * (p_i + p_j);
+}
 template <typename Real, int Dim>
 CASCADE_HD inline Vec<Real, Dim> pressure_force_pair(Real volume_j, Real p_i, Real p_j, const Vec<Real, Dim>& grad_w) {
-  return (-volume_j * (p_i + p_j)) * grad_w;
+  return pressure_force_coefficient(volume_j, p_i, p_j) * grad_w;
 }
 
 // The pressure of a pair across the soil-water interface, p_w + S_w p_w,s (free water and the
@@ -42,29 +47,43 @@ CASCADE_HD inline Real interface_contact_pressure(Real pair_pressure) {
 // of the two: there both are the same pressure up to the particles' noise, and the larger of them
 // biased the interface upwards (the submerged layer's buoyant weight 3.3% off at h/dp 1.5, 1.7%
 // with S_w p_w).
+// gravity_along is g·(x_s − x), the soil particle's position relative to the water's along gravity.
+template <typename Real>
+CASCADE_HD inline Real soil_shown_pressure(Real saturation, Real pore_pressure, Real water_pressure, Real water_rho0,
+                                           Real gravity_along) {
+  const Real pore_stress = saturation * pore_pressure;
+  const Real carried = water_pressure + water_rho0 * gravity_along;
+  return pore_pressure >= Real(0) || pore_stress > carried ? pore_stress : carried;
+}
 template <typename Real, int Dim>
 CASCADE_HD inline Real soil_shown_pressure(Real saturation, Real pore_pressure, Real water_pressure, Real water_rho0,
                                            const Vec<Real, Dim>& gravity, const Vec<Real, Dim>& soil_minus_water) {
-  const Real pore_stress = saturation * pore_pressure;
-  const Real carried = water_pressure + water_rho0 * gravity.dot(soil_minus_water);
-  return pore_pressure >= Real(0) || pore_stress > carried ? pore_stress : carried;
+  return soil_shown_pressure(saturation, pore_pressure, water_pressure, water_rho0, gravity.dot(soil_minus_water));
 }
 
 // μ_ij = h v_ij·x_ij / (|x_ij|² + η²) (Eq. 24c); also the pair term of the CFL limit (Eq. 40b).
 // Takes 1/(|x_ij|² + η²), which the δ-term of Eq. 24b shares.
+template <typename Real>
+CASCADE_HD inline Real viscosity_mu(Real h, Real v_ij_dot_x_ij, Real inv_r2_eta2) {
+  return h * v_ij_dot_x_ij * inv_r2_eta2;
+}
 template <typename Real, int Dim>
 CASCADE_HD inline Real viscosity_mu(Real h, const Vec<Real, Dim>& v_ij, const Vec<Real, Dim>& x_ij, Real inv_r2_eta2) {
-  return h * v_ij.dot(x_ij) * inv_r2_eta2;
+  return viscosity_mu(h, v_ij.dot(x_ij), inv_r2_eta2);
 }
 
 // α c_0 (m_j / ρ̄_ij) μ_ij ∇_i W_ij for approaching pairs (μ_ij < 0), else 0 (Eqs. 23b, 24c),
 // with ρ̄_ij = (ρ_i + ρ_j)/2. h appears once, inside μ_ij: the acceleration then has units m/s².
 // Repulsive: μ < 0 and ∇_i W_ij = F x_ij with F < 0 push i away from j.
+template <typename Real>
+CASCADE_HD inline Real artificial_viscosity_coefficient(Real alpha_c0, Real mass_j, Real rho_i, Real rho_j, Real mu) {
+  const Real approaching_mu = mu < Real(0) ? mu : Real(0);
+  return Real(2) * alpha_c0 * mass_j / (rho_i + rho_j) * approaching_mu;
+}
 template <typename Real, int Dim>
 CASCADE_HD inline Vec<Real, Dim> artificial_viscosity_pair(Real alpha_c0, Real mass_j, Real rho_i, Real rho_j, Real mu,
                                                           const Vec<Real, Dim>& grad_w) {
-  const Real approaching_mu = mu < Real(0) ? mu : Real(0);
-  return (Real(2) * alpha_c0 * mass_j / (rho_i + rho_j) * approaching_mu) * grad_w;
+  return artificial_viscosity_coefficient(alpha_c0, mass_j, rho_i, rho_j, mu) * grad_w;
 }
 
 }  // namespace cascade
