@@ -86,17 +86,19 @@ struct GridView {
     return d;
   }
 
-  // Component A of x_i − x_j (0 past the dimension), x_j read from the position array: the form a
-  // neighbour loop with scalar sums takes, since GCC does not vectorise such a loop when it holds
-  // Eigen vectors (docs/performance.md, "The neighbour loops").
-  template <int A>
-  CASCADE_HD Real displacement_along(const Vec<Real, Dim>& xi, const Vec<Real, Dim>* position, std::uint32_t j) const {
-    if constexpr (A < Dim) {
-      const Real d = xi[A] - gather_component<A>(position, j);
-      return d - period[A] * Real(std::rint(d * inv_period[A]));
-    } else {
-      return Real(0);
-    }
+  // x_i − x_j by components (0 past the dimension) and its squared length, x_j read from the
+  // position array: the form a neighbour loop with scalar sums takes, since GCC does not vectorise
+  // such a loop when it holds Eigen vectors (docs/performance.md, "The neighbour loops").
+  struct Offset {
+    Real x0, x1, x2, r2;
+  };
+  CASCADE_HD Offset offset(const Vec<Real, Dim>& xi, const Vec<Real, Dim>* position, std::uint32_t j) const {
+    Offset d;
+    d.x0 = along<0>(xi, position, j);
+    d.x1 = along<1>(xi, position, j);
+    d.x2 = along<2>(xi, position, j);
+    d.r2 = d.x0 * d.x0 + d.x1 * d.x1 + d.x2 * d.x2;
+    return d;
   }
 
   // Wraps a position back into the domain along periodic axes.
@@ -155,6 +157,16 @@ struct GridView {
   }
 
  private:
+  template <int A>
+  CASCADE_HD Real along(const Vec<Real, Dim>& xi, const Vec<Real, Dim>* position, std::uint32_t j) const {
+    if constexpr (A < Dim) {
+      const Real d = xi[A] - gather_component<A>(position, j);
+      return d - period[A] * Real(std::rint(d * inv_period[A]));
+    } else {
+      return Real(0);
+    }
+  }
+
   // Calls range(begin, end) for the particles of blocks [FirstBlock, EndBlock) in the cells
   // within kReach of cell c.
   template <int FirstBlock, int EndBlock, typename F>

@@ -30,17 +30,9 @@ using Vec = Eigen::Matrix<Real, Dim, 1>;
 template <typename Real, int Dim>
 using Mat = Eigen::Matrix<Real, Dim, Dim>;
 
-// Element j of an array of vectors, read through a 32-bit element index so that the host
-// compiler turns the reads of a vectorised neighbour loop into gathers (base + 4·index).
-template <typename Real, int Dim>
-CASCADE_HD inline Vec<Real, Dim> gather(const Vec<Real, Dim>* array, std::uint32_t j) {
-  const Real* base = array->data();
-  Vec<Real, Dim> v;
-  for (int a = 0; a < Dim; ++a) v[a] = base[std::uint32_t(Dim) * j + std::uint32_t(a)];
-  return v;
-}
-
-// Component A of element j of an array of vectors (0 past the dimension), as gather reads it.
+// Component A of element j of an array of vectors (0 past the dimension), read through a 32-bit
+// element index so that the host compiler turns the reads of a vectorised neighbour loop into
+// gathers (base + 4·index).
 template <int A, typename Real, int Dim>
 CASCADE_HD inline Real gather_component(const Vec<Real, Dim>* array, std::uint32_t j) {
   if constexpr (A < Dim) return array->data()[std::uint32_t(Dim) * j + std::uint32_t(A)];

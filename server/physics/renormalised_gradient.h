@@ -67,11 +67,9 @@ struct RenormalisedDensityGradient {
     CASCADE_SIMD(reduction(+ : g0, g1, g2, m00, m01, m02, m11, m12, m22, q0, q1, q2, n00, n01, n02, n11, n12, n22))
     for (std::uint32_t k = 0; k < count; ++k) {
       const std::uint32_t j = list[k];
-      const Real x0 = grid.template displacement_along<0>(x_i, p.position, j);
-      const Real x1 = grid.template displacement_along<1>(x_i, p.position, j);
-      const Real x2 = grid.template displacement_along<2>(x_i, p.position, j);
+      const auto [x0, x1, x2, r2] = grid.offset(x_i, p.position, j);
       // V_j F, zero beyond the support 2h.
-      const Real volume_factor = sph.mass / p.density[j] * sph.kernel.gradient_factor(std::sqrt(x0 * x0 + x1 * x1 + x2 * x2));
+      const Real volume_factor = sph.mass / p.density[j] * sph.kernel.gradient_factor(std::sqrt(r2));
       // Neighbours of the other medium take no part: the soil for the water, the free water for
       // the soil's pore water (a factor, not a branch: the loop stays vectorised).
       const bool other_medium = PoreWater ? j < water_end : (j >= water_end) & (j < dummy_begin);

@@ -100,10 +100,7 @@ struct WaterGhostSums {
                            fxx11, fxx12, fxx22, wv0, wv1, wv2))
     for (std::uint32_t k = 0; k < count; ++k) {
       const std::uint32_t j = list[k];
-      const Real x0 = grid.template displacement_along<0>(x_g, p.position, j);
-      const Real x1 = grid.template displacement_along<1>(x_g, p.position, j);
-      const Real x2 = grid.template displacement_along<2>(x_g, p.position, j);
-      const Real r2 = x0 * x0 + x1 * x1 + x2 * x2;
+      const auto [x0, x1, x2, r2] = grid.offset(x_g, p.position, j);
       const Real r = std::sqrt(r2);
       const Real volume = sph.mass / p.density[j];
       const Real w = sph.kernel.value(r) * volume;
@@ -178,11 +175,8 @@ struct SolidBoundaryWater {
     grid.template for_each_range_in<Grid::kWaterBlock, Grid::kWaterBlock + 1>(
         x_g, [&](std::uint32_t begin, std::uint32_t end) {
       for (std::uint32_t j = begin; j < end; ++j) {
-        const Real x0 = grid.template displacement_along<0>(x_g, p.position, j);
-        const Real x1 = grid.template displacement_along<1>(x_g, p.position, j);
-        const Real x2 = grid.template displacement_along<2>(x_g, p.position, j);
         listed[count] = j;
-        count += x0 * x0 + x1 * x1 + x2 * x2 < grid.search2 ? 1u : 0u;
+        count += grid.offset(x_g, p.position, j).r2 < grid.search2 ? 1u : 0u;
         if (count == kChunk) {
           sums.add(grid, sph, p, x_g, listed, count);
           count = 0;

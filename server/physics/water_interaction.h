@@ -74,10 +74,7 @@ struct WaterInteraction {
     CASCADE_SIMD(reduction(+ : divergence, diffusion, a0, a1, a2) reduction(max : max_mu_bits))
     for (std::uint32_t k = 0; k < count; ++k) {
       const std::uint32_t j = list[k];
-      const Real x0 = grid.template displacement_along<0>(x_i, p.position, j);
-      const Real x1 = grid.template displacement_along<1>(x_i, p.position, j);
-      const Real x2 = grid.template displacement_along<2>(x_i, p.position, j);
-      const Real r2 = x0 * x0 + x1 * x1 + x2 * x2;
+      const auto [x0, x1, x2, r2] = grid.offset(x_i, p.position, j);
       const Real rho_j = p.density[j];
       const Real volume_j = sph.mass / rho_j;
       // Zero beyond the support 2h, so the list's skin entries add nothing below.

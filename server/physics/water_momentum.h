@@ -5,18 +5,14 @@
 
 namespace cascade {
 
-// One neighbour's −V_j (p_i + p_j) ∇_i W_ij (the coefficient −V_j (p_i + p_j) of ∇_i W_ij alone, for
-// the neighbour loops that sum scalars). The sum is divided by ρ_i, the numerical density
+// One neighbour's −V_j (p_i + p_j) ∇_i W_ij, written as the coefficient −V_j (p_i + p_j) of
+// ∇_i W_ij for the neighbour loops that sum scalars. It is divided by ρ_i, the numerical density
 // that defines V_i = m/ρ_i, so that the pair force −V_i V_j (p_i + p_j) ∇_i W_ij acting on i is
 // exactly the opposite of the one acting on j and Σ m v is conserved to round-off
 // (docs/physics.md, "Water momentum").
 template <typename Real>
 CASCADE_HD inline Real pressure_force_coefficient(Real volume_j, Real p_i, Real p_j) {
   return -volume_j * (p_i + p_j);
-}
-template <typename Real, int Dim>
-CASCADE_HD inline Vec<Real, Dim> pressure_force_pair(Real volume_j, Real p_i, Real p_j, const Vec<Real, Dim>& grad_w) {
-  return pressure_force_coefficient(volume_j, p_i, p_j) * grad_w;
 }
 
 // The pressure of a pair across the soil-water interface, p_w + S_w p_w,s (free water and the
