@@ -128,8 +128,8 @@ struct GridView {
 
   // Calls f(begin, end) for each contiguous range of particles of blocks [FirstBlock, EndBlock) in
   // the cells around position x: every particle within the search radius of x is in one of them,
-  // with others of the same cells. A pass that loops over a range itself, with the kernel zero
-  // beyond 2h, vectorises with contiguous reads (SolidBoundaryWater).
+  // with others of the same cells. SolidBoundaryWater lists those within its radius from each
+  // range without a branch per particle.
   template <int FirstBlock, int EndBlock, typename F>
   CASCADE_HD void for_each_range_in(const Vec<Real, Dim>& x, F&& f) const {
     int c[Dim];
