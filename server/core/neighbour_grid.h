@@ -82,7 +82,7 @@ struct GridView {
   // neighbour loops vectorise: along other axes the period is 0 and the correction vanishes.
   CASCADE_HD Vec<Real, Dim> displacement(const Vec<Real, Dim>& xi, const Vec<Real, Dim>& xj) const {
     Vec<Real, Dim> d = xi - xj;
-    for (int a = 0; a < Dim; ++a) d[a] -= period[a] * Real(std::rint(d[a] * inv_period[a]));
+    for (int a = 0; a < Dim; ++a) d[a] = nearest_image(d[a], a);
     return d;
   }
 
@@ -159,13 +159,13 @@ struct GridView {
  private:
   template <int A>
   CASCADE_HD Real along(const Vec<Real, Dim>& xi, const Vec<Real, Dim>* position, std::uint32_t j) const {
-    if constexpr (A < Dim) {
-      const Real d = xi[A] - gather_component<A>(position, j);
-      return d - period[A] * Real(std::rint(d * inv_period[A]));
-    } else {
-      return Real(0);
-    }
+    if constexpr (A < Dim) return nearest_image(xi[A] - gather_component<A>(position, j), A);
+    else return Real(0);
   }
+
+  // A difference d of coordinates along axis a, to the nearest periodic image (unchanged along
+  // the other axes, where the period is 0).
+  CASCADE_HD Real nearest_image(Real d, int a) const { return d - period[a] * Real(std::rint(d * inv_period[a])); }
 
   // Calls range(begin, end) for the particles of blocks [FirstBlock, EndBlock) in the cells
   // within kReach of cell c.

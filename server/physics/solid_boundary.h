@@ -184,9 +184,8 @@ struct SolidBoundaryWater {
       }
     });
     sums.add(grid, sph, p, x_g, listed, count);
-    const bool any_water = sums.any_water;
     const GhostInterpolation<Real, Dim, 1> ghost = sums.interpolation();
-    if (wet && !half_step) wet[b] = any_water ? 1 : 0;
+    if (wet && !half_step) wet[b] = sums.any_water ? 1 : 0;
     if (ghost.empty()) {
       p.water_density[b] = water.rho0;
       p.pressure[b] = 0;
