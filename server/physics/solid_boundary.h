@@ -163,23 +163,33 @@ struct SolidBoundaryWater {
     if (p.phase[b] != Phase::boundary) return;
     if (half_step && wet && !wet[b]) return;
     const Vec<Real, Dim> x_g = p.ghost[b];
-    // The water within the search radius is listed in chunks, each summed in a vectorised loop.
-    // The listing has no branch on the distance (an index is written, then kept or overwritten):
-    // whether a candidate of the cells lies within the radius is near random, and mispredicted
-    // branches cost more than the stores.
+    // The water within the search radius is listed in chunks of 128, each summed in a vectorised
+    // loop. A cell range is listed a block of 64 candidates at a time: their squared distances in
+    // a vectorised loop, then the indices of those within the radius, without a branch on the
+    // distance (an index is written, then kept or overwritten): whether a candidate lies within
+    // the radius is near random, and mispredicted branches cost more than the stores. What a
+    // block lists past a full chunk starts the next one, so the chunks, and the order of the sums,
+    // are those of a listing one candidate at a time.
     WaterGhostSums<Real, Dim> sums;
-    constexpr std::uint32_t kChunk = 128;
-    std::uint32_t listed[kChunk];
+    constexpr std::uint32_t kChunk = 128, kBlock = 64;
+    std::uint32_t listed[kChunk + kBlock];
+    Real r2[kBlock];
     std::uint32_t count = 0;
     using Grid = GridView<Real, Dim>;
     grid.template for_each_range_in<Grid::kWaterBlock, Grid::kWaterBlock + 1>(
         x_g, [&](std::uint32_t begin, std::uint32_t end) {
-      for (std::uint32_t j = begin; j < end; ++j) {
-        listed[count] = j;
-        count += grid.offset(x_g, p.position, j).r2 < grid.search2 ? 1u : 0u;
-        if (count == kChunk) {
-          sums.add(grid, sph, p, x_g, listed, count);
-          count = 0;
+      for (std::uint32_t first = begin; first < end; first += kBlock) {
+        const std::uint32_t n = end - first < kBlock ? end - first : kBlock;
+        CASCADE_SIMD()
+        for (std::uint32_t k = 0; k < n; ++k) r2[k] = grid.offset(x_g, p.position, first + k).r2;
+        for (std::uint32_t k = 0; k < n; ++k) {
+          listed[count] = first + k;
+          count += r2[k] < grid.search2 ? 1u : 0u;
+        }
+        if (count >= kChunk) {
+          sums.add(grid, sph, p, x_g, listed, kChunk);
+          count -= kChunk;
+          for (std::uint32_t k = 0; k < count; ++k) listed[k] = listed[kChunk + k];
         }
       }
     });
