@@ -82,7 +82,7 @@ class Simulation final : public Engine {
       v->assign(n, Real(0));
     for (auto* v : {&acceleration_, &water_density_gradient_, &start_position_, &start_velocity_, &listed_position_})
       v->assign(n, V::Zero());
-    ghost_wet_.resize(n);
+    dummy_flags_.resize(n);
     scratch_phase_.resize(n);
     scratch_index_.resize(n);
     set_up_soil(host);
@@ -229,7 +229,7 @@ class Simulation final : public Engine {
     add(start_position_), add(start_velocity_), add(listed_position_);
     add(density_), add(water_density_), add(pressure_), add(density_rate_), add(water_density_rate_);
     add(step_limit_), add(start_density_), add(start_water_density_);
-    add(phase_), add(scratch_phase_), add(ghost_wet_), add(id_), add(scratch_index_);
+    add(phase_), add(scratch_phase_), add(dummy_flags_), add(id_), add(scratch_index_);
     add(soil_materials_), add(soil_material_), add(free_surface_), add(surface_state_);
     add(porosity_), add(saturation_), add(conductivity_), add(seepage_), add(skeleton_acceleration_);
     add(effective_stress_), add(start_stress_);
@@ -252,6 +252,7 @@ class Simulation final : public Engine {
     thrust::copy(density_.begin(), density_.end(), density.begin());
     thrust::copy(phase_.begin(), phase_.end(), phase.begin());
     thrust::copy(id_.begin(), id_.end(), id.begin());
+    show_unlisted_dummies(velocity, pressure, water_density);
 
     FieldFrame f;
     f.time = time_;
@@ -289,6 +290,34 @@ class Simulation final : public Engine {
   }
 
  private:
+  // The steps give no water values to the dummies that no particle lists (they rest at ρ_w0,
+  // SolidBoundaryWater): a frame shows those the values their ghost nodes give now, computed
+  // into copies, so that taking a frame changes nothing in the run.
+  void show_unlisted_dummies(std::vector<V>& velocity, std::vector<Real>& pressure,
+                             std::vector<Real>& water_density) const {
+    if (active_ == moving_) return;
+    Vector<Real> shown_pressure = pressure_, shown_water_density = water_density_;
+    Vector<V> shown_velocity = velocity_;
+    ParticleView<Real, Dim> shown = const_cast<Simulation*>(this)->view();  // read only, but for these:
+    shown.pressure = raw(shown_pressure), shown.water_density = raw(shown_water_density);
+    shown.velocity = raw(shown_velocity);
+    launch(SolidBoundaryWater<Real, Dim>{shown, grid_, sph_, water_, nullptr, false}, moving_, active_);
+    const std::size_t n = active_ - moving_;
+    std::vector<std::uint8_t> flags(n);
+    std::vector<Real> dummy_pressure(n), dummy_water_density(n);
+    std::vector<V> dummy_velocity(n);
+    thrust::copy(dummy_flags_.begin() + moving_, dummy_flags_.begin() + active_, flags.begin());
+    thrust::copy(shown_pressure.begin() + moving_, shown_pressure.begin() + active_, dummy_pressure.begin());
+    thrust::copy(shown_water_density.begin() + moving_, shown_water_density.begin() + active_,
+                 dummy_water_density.begin());
+    thrust::copy(shown_velocity.begin() + moving_, shown_velocity.begin() + active_, dummy_velocity.begin());
+    for (std::size_t k = 0; k < n; ++k) {
+      if (flags[k] & kListed) continue;
+      pressure[moving_ + k] = dummy_pressure[k], water_density[moving_ + k] = dummy_water_density[k];
+      velocity[moving_ + k] = dummy_velocity[k];
+    }
+  }
+
   // The arrays that hold state from one step to the next (sort_by_cell's reordered ones, and the
   // listed positions that decide the next list rebuild), with the pressures and surface values
   // the frames report; every other array is recomputed in a step before it is read.
@@ -420,7 +449,7 @@ class Simulation final : public Engine {
   // per step). Over a few blocks an even split is faster (the 2D demo's 1265 particles: 0.68
   // against 0.64 ms per step). Each particle's result is the same whichever thread computes it.
   template <typename F>
-  void launch(const F& f, std::size_t begin, std::size_t end) {
+  static void launch(const F& f, std::size_t begin, std::size_t end) {
 #if defined(_OPENMP) && !defined(__CUDACC__)
     if constexpr (std::is_same_v<Backend, OmpBackend>) {
       if (end - begin >= kDynamicLaunchFrom) {
@@ -450,8 +479,8 @@ class Simulation final : public Engine {
   // list each moving particle's neighbours for the rate evaluations of this and later steps.
   void sort_by_cell() {
     cells_.sort(position_, phase_);
-    // The step-start copies and the wet flags are free while the sort runs (save_step_start and
-    // the first evaluation write them after it): they serve as the gathers' scratch.
+    // The step-start copies and the dummies' flags are free while the sort runs (save_step_start
+    // and DummyVisibility write them after it): they serve as the gathers' scratch.
     cells_.reorder(position_, start_position_);
     cells_.reorder(velocity_, start_position_);
     cells_.reorder(ghost_, start_position_);
@@ -462,9 +491,9 @@ class Simulation final : public Engine {
     if (has_soil_) {
       // Carried from step to step: the material, the porosity, the surface state and the last
       // seepage discharge that decides it (pore_water_state.h). The rest is recomputed.
-      cells_.reorder(soil_material_, ghost_wet_);
-      cells_.reorder(surface_state_, ghost_wet_);
-      cells_.reorder(wall_, ghost_wet_);
+      cells_.reorder(soil_material_, dummy_flags_);
+      cells_.reorder(surface_state_, dummy_flags_);
+      cells_.reorder(wall_, dummy_flags_);
       cells_.reorder(porosity_, start_density_);
       cells_.reorder(plastic_strain_, start_density_);
       cells_.reorder(seepage_, start_position_);
@@ -481,6 +510,7 @@ class Simulation final : public Engine {
     active_ = cells_.active();
     moving_ = cells_.moving();
     neighbours_.build(grid_, position_, moving_);
+    launch(DummyVisibility<Real, Dim>{grid_, raw(position_), raw(dummy_flags_)}, moving_, active_);
     thrust::copy(Backend::policy(), position_.begin(), position_.end(), listed_position_.begin());
   }
 
@@ -545,7 +575,7 @@ class Simulation final : public Engine {
   // step's first evaluation), the pore-water state and surface conditions (Eqs. 6, 39) and the
   // dummies' soil side (Eqs. 32a, 32b, 35a).
   void boundary_values(bool half_step) {
-    launch(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_, raw(ghost_wet_), half_step}, moving_, active_);
+    launch(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_, raw(dummy_flags_), half_step}, moving_, active_);
     if (!has_soil_) return;
     const std::uint32_t water = grid_.water_end;
     if (!half_step) launch(FreeSurfaceDetection<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_}, water, moving_);
@@ -745,7 +775,7 @@ class Simulation final : public Engine {
   Vector<Real> density_, water_density_, pressure_, density_rate_, water_density_rate_, step_limit_, start_density_,
       start_water_density_;
   Vector<Phase> phase_, scratch_phase_;
-  Vector<std::uint8_t> ghost_wet_;
+  Vector<std::uint8_t> dummy_flags_;
   bool has_soil_ = false;
   Vector<SoilMaterial> soil_materials_;
   Vector<std::uint8_t> soil_material_, free_surface_, surface_state_, wall_;

@@ -147,21 +147,32 @@ struct WaterGhostSums {
 // node (Eqs. 30, 31, 33b) and the hydrostatic gradient, ρ_w from p_w (Eq. 6), velocity from
 // Eqs. 34a, 35a. A dummy particle with no water near its ghost node rests at ρ_w0.
 //
-// At the half step a dummy particle whose ghost had no water within the search radius (2h and
-// the neighbour-list skin) at the start of the step is skipped: the water has moved less than the
-// skin since, so the ghost still sees none and the rest values written then still hold.
+// Which dummy particles a step computes (flags per particle, set by DummyVisibility at each list
+// build and by SolidBoundaryWater at the step's first evaluation):
+// - kListed: some moving particle lists the dummy. One that none lists is read by no pass until
+//   the lists are built again, and shows the rest values (ρ_w0, p = 0, v = 0) meanwhile; in the
+//   3D dam break that is three dummies in four (the fourth layer and the dry walls).
+// - kWet: water was within the search radius (2h and the neighbour-list skin) of its ghost at the
+//   step's start. At the half step a dummy without it is skipped: the water has moved less than
+//   the skin since, so the ghost still sees none and the rest values written then still hold.
+constexpr std::uint8_t kListed = 1, kWet = 2;
+
 template <typename Real, int Dim>
 struct SolidBoundaryWater {
   ParticleView<Real, Dim> p;
   GridView<Real, Dim> grid;
   SphConstants<Real, Dim> sph;
   WaterConstants<Real> water;
-  std::uint8_t* wet = nullptr;  // per particle: water near the ghost at the step's start
+  std::uint8_t* flags = nullptr;  // per particle, kListed | kWet; none: every dummy is computed
   bool half_step = false;
 
   CASCADE_HD void operator()(std::uint32_t b) const {
     if (p.phase[b] != Phase::boundary) return;
-    if (half_step && wet && !wet[b]) return;
+    if (flags && !(flags[b] & kListed)) {
+      if (!half_step) rest(b);
+      return;
+    }
+    if (half_step && flags && !(flags[b] & kWet)) return;
     const Vec<Real, Dim> x_g = p.ghost[b];
     // The water within the search radius is listed in chunks of 128, each summed in a vectorised
     // loop. A cell range is listed a block of 64 candidates at a time: their squared distances in
@@ -195,11 +206,9 @@ struct SolidBoundaryWater {
     });
     sums.add(grid, sph, p, x_g, listed, count);
     const GhostInterpolation<Real, Dim, 1> ghost = sums.interpolation();
-    if (wet && !half_step) wet[b] = sums.any_water ? 1 : 0;
+    if (flags && !half_step) flags[b] = sums.any_water ? kListed | kWet : kListed;
     if (ghost.empty()) {
-      p.water_density[b] = water.rho0;
-      p.pressure[b] = 0;
-      p.velocity[b] = Vec<Real, Dim>::Zero();
+      rest(b);
       return;
     }
     // The ghost node's pressure (Eq. 6 of the value of Eq. 30, or of Eq. 33b's Shepard value),
@@ -215,6 +224,38 @@ struct SolidBoundaryWater {
     p.water_density[b] = water.density(p_b);
     p.pressure[b] = p_b;
     p.velocity[b] = -ghost.ghost_velocity();
+  }
+
+ private:
+  // A dummy with no water near its ghost, or one no particle lists, rests at ρ_w0.
+  CASCADE_HD void rest(std::uint32_t b) const {
+    p.water_density[b] = water.rho0;
+    p.pressure[b] = 0;
+    p.velocity[b] = Vec<Real, Dim>::Zero();
+  }
+};
+
+// kListed for each dummy particle within the lists' search radius of a water or soil particle at
+// the positions the lists were built at: exactly those that some list holds. The radius has a
+// margin of 10⁻³ in r² over the lists' own, whose r² is summed in another order, so that no
+// listed dummy can be missed by a rounding.
+template <typename Real, int Dim>
+struct DummyVisibility {
+  GridView<Real, Dim> grid;
+  const Vec<Real, Dim>* position;
+  std::uint8_t* flags;
+
+  CASCADE_HD void operator()(std::uint32_t b) const {
+    const Vec<Real, Dim> x_b = position[b];
+    const Real radius2 = grid.search2 * Real(1.001);
+    using Grid = GridView<Real, Dim>;
+    unsigned listed = 0;
+    grid.template for_each_range_in<Grid::kWaterBlock, Grid::kSoilBlock + 1>(
+        x_b, [&](std::uint32_t begin, std::uint32_t end) {
+      CASCADE_SIMD(reduction(| : listed))
+      for (std::uint32_t j = begin; j < end; ++j) listed |= grid.offset(x_b, position, j).r2 < radius2 ? 1u : 0u;
+    });
+    flags[b] = listed ? kListed : 0;
   }
 };
 
