@@ -144,7 +144,7 @@ class Simulation final : public Engine {
   void refresh_seepage() override {
     if (!has_soil_ || relaxing()) return;
     update_lists();
-    launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
+    launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_, raw(dummy_flags_)}, moving_, active_);
     pore_water_gradients();
     seepage_discharge();
   }
@@ -582,7 +582,7 @@ class Simulation final : public Engine {
     // Held pore water keeps its surface states too.
     launch(PoreWaterState<Real, Dim>{view(), soil_view(), surface_forcing(), water_.rho0, !half_step && !relaxing()},
            water, moving_);
-    launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_}, moving_, active_);
+    launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_, raw(dummy_flags_)}, moving_, active_);
   }
 
   // The seepage discharge (Eq. 27b), for the frames and the surface states (pore_water_state.h).

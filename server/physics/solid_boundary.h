@@ -151,7 +151,8 @@ struct WaterGhostSums {
 // build and by SolidBoundaryWater at the step's first evaluation):
 // - kListed: some moving particle lists the dummy. One that none lists is read by no pass until
 //   the lists are built again, and shows the rest values (ρ_w0, p = 0, v = 0) meanwhile; in the
-//   3D dam break that is three dummies in four (the fourth layer and the dry walls).
+//   3D dam break at 0.004 s that is about 110,000 of 134,391 (the dry walls and the layer farthest
+//   from the water).
 // - kWet: water was within the search radius (2h and the neighbour-list skin) of its ghost at the
 //   step's start. At the half step a dummy without it is skipped: the water has moved less than
 //   the skin since, so the ghost still sees none and the rest values written then still hold.

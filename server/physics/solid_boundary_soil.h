@@ -34,8 +34,18 @@ struct SolidBoundarySoil {
   SoilView<Real, Dim> soil;
   GridView<Real, Dim> grid;
   SphConstants<Real, Dim> sph;
+  const std::uint8_t* flags = nullptr;  // per particle, kListed (solid_boundary.h); none: every dummy
 
   CASCADE_HD void operator()(std::uint32_t b) const {
+    const std::uint32_t k = b - grid.moving_end;  // the dummy block's index
+    const std::uint8_t wall = soil.wall[b];
+    const Real prescribed = wall ? soil.wall_pore_pressure[wall - 1] : Real(0);
+    // A dummy that no particle lists is read by no pass until the lists are built again
+    // (DummyVisibility): it rests.
+    if (flags && !(flags[b] & kListed)) {
+      rest(k, prescribed);
+      return;
+    }
     const Vec<Real, Dim> x_g = p.ghost[b];
     GhostInterpolation<Real, Dim, 7> ghost;  // p_w, then the 6 components of σ
     using Grid = GridView<Real, Dim>;
@@ -48,19 +58,23 @@ struct SolidBoundarySoil {
           ghost.add(sph.mass / p.density[j], sph.kernel.value(r), sph.kernel.gradient_factor(r) * x_gj, x_gj, values,
                     p.velocity[j]);
         });
-    const std::uint32_t k = b - grid.moving_end;  // the dummy block's index
-    const std::uint8_t wall = soil.wall[b];
-    const Real prescribed = wall ? soil.wall_pore_pressure[wall - 1] : Real(0);
     if (ghost.empty()) {
-      soil.dummy_pore_pressure[k] = prescribed;
-      soil.dummy_stress[k] = Voigt<Real>::Zero();
-      soil.dummy_velocity[k] = Vec<Real, Dim>::Zero();
+      rest(k, prescribed);
       return;
     }
     const Eigen::Matrix<Real, 7, 1> values = ghost.extrapolate(p.position[b], x_g);
     soil.dummy_pore_pressure[k] = wall ? drained_wall_pore_pressure(prescribed, ghost.at_ghost()(0)) : values(0);
     soil.dummy_stress[k] = values.template tail<6>();
     soil.dummy_velocity[k] = -ghost.ghost_velocity();
+  }
+
+ private:
+  // No soil near the ghost: the wall's prescribed pore pressure (0 for an impermeable one), no
+  // stress, at rest.
+  CASCADE_HD void rest(std::uint32_t k, Real prescribed) const {
+    soil.dummy_pore_pressure[k] = prescribed;
+    soil.dummy_stress[k] = Voigt<Real>::Zero();
+    soil.dummy_velocity[k] = Vec<Real, Dim>::Zero();
   }
 };
 
