@@ -32,7 +32,8 @@ inline void time_steps(benchmark::State& state, Engine& engine, int warm_up) {
 
 // Registers `run(state, size, precision)` as `prefix/<label>/<float|double>/threads:<t>` for
 // every size, both precisions and 1 and 2 threads, each for at least `seconds`; sizes from
-// `long_from` on for 10 s.
+// `long_from` on for 8 steps: the lists are rebuilt every few steps, and a time of one or two
+// steps (all that 10 s holds at 10⁷ particles) may hold no rebuild.
 template <typename Size>
 void register_sizes(const std::string& prefix, const std::vector<Size>& sizes,
                     const std::function<std::string(const Size&)>& label, std::size_t long_from, double seconds,
@@ -44,14 +45,15 @@ void register_sizes(const std::string& prefix, const std::vector<Size>& sizes,
                                  (p == Precision::single_precision ? "/float" : "/double") +
                                  "/threads:" + std::to_string(threads);
         const Size size = sizes[k];
-        benchmark::RegisterBenchmark(name.c_str(),
+        auto* registered = benchmark::RegisterBenchmark(name.c_str(),
                                      [run, size, p, threads](benchmark::State& state) {
                                        omp_set_num_threads(threads);
                                        run(state, size, p);
                                      })
             ->Unit(benchmark::kMillisecond)
-            ->MinTime(k >= long_from ? 10.0 : seconds)
             ->UseRealTime();
+        if (k >= long_from) registered->Iterations(8);
+        else registered->MinTime(seconds);
       }
 }
 
