@@ -192,8 +192,8 @@ class Dashboard(unittest.TestCase):
         try:
             self.wait_for(driver, lambda d: result_contains in self.text(d, "action-result"), "")
         except TimeoutException:
-            self.fail(f"no '{result_contains}' after {button}: the page shows '{self.text(driver, 'action-result')}'"
-                      f" for {self.text(driver, 'selected-name') if driver.find_elements(By.ID, 'selected-name') else '?'}")
+            self.fail(f"no '{result_contains}' after {button}: the page shows "
+                      f"'{self.text(driver, 'action-result')}' for '{self.text(driver, 'selected-name')}'")
         self.assertNotIn("error", driver.find_element(By.ID, "action-result").get_attribute("class"))
 
     def row(self, driver, name):
