@@ -135,4 +135,9 @@ class Engine {
 
 std::unique_ptr<Engine> make_engine(const EngineConfig& config, const HostParticles& particles);
 
+// One process's share of a run split over processes (partition.h; server/parallel/ sets it up).
+struct PartitionSetup;
+std::unique_ptr<Engine> make_share_engine(const EngineConfig& config, const HostParticles& share,
+                                          const PartitionSetup& partition);
+
 }  // namespace cascade

@@ -3,8 +3,9 @@
 
 namespace cascade {
 
-std::unique_ptr<Engine> make_cuda_engine(const EngineConfig& config, const HostParticles& particles) {
-  return make_simulation<CudaBackend>(config, particles);
+std::unique_ptr<Engine> make_cuda_engine(const EngineConfig& config, const HostParticles& particles,
+                                         const PartitionSetup* partition) {
+  return make_simulation<CudaBackend>(config, particles, partition);
 }
 
 }  // namespace cascade

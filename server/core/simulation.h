@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdio>
+#include <cstring>
 
 #include <thrust/copy.h>
 #include <thrust/fill.h>
@@ -10,6 +11,7 @@
 #include <thrust/host_vector.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/reduce.h>
+#include <thrust/replace.h>
 #include <thrust/transform.h>
 #include <thrust/transform_reduce.h>
 
@@ -25,7 +27,9 @@
 #include "server/core/engine.h"
 #include "server/core/cell_sort.h"
 #include "server/core/neighbour_list.h"
+#include "server/core/particle_rows.h"
 #include "server/core/particle_view.h"
+#include "server/core/partition.h"
 #include "server/physics/free_surface.h"
 #include "server/physics/local_damping.h"
 #include "server/physics/soil_interaction.h"
@@ -51,7 +55,9 @@ class Simulation final : public Engine {
   using V = Vec<Real, Dim>;
 
  public:
-  Simulation(const EngineConfig& config, const HostParticles& host)
+  // With a partition, `host` holds this process's share of the run (partition.h): the particles it
+  // owns, the copies of the others' within its halo, and the dummies there.
+  Simulation(const EngineConfig& config, const HostParticles& host, const PartitionSetup* partition = nullptr)
       : config_(config),
         forcing_(config.forcing),
         cells_(config.domain_min, config.domain_max, config.periodic, 2.0 * kListRadius * config.h),
@@ -68,7 +74,12 @@ class Simulation final : public Engine {
         ghost[i][a] = Real(host.ghost[i * Dim + a]);
       }
       water_density[i] = Real(host.water_density[i]);
-      id[i] = std::uint32_t(i);
+      id[i] = partition ? partition->global_id[i] : std::uint32_t(i);
+    }
+    if (partition) {
+      transport_ = partition->transport;
+      slabs_ = partition->slabs;
+      owner_ = partition->owner;
     }
     position_ = position;
     velocity_ = velocity;
@@ -85,7 +96,7 @@ class Simulation final : public Engine {
     dummy_flags_.resize(n);
     scratch_phase_.resize(n);
     scratch_index_.resize(n);
-    set_up_soil(host);
+    set_up_soil(host, partition);
 
     sph_.h = Real(config.h);
     // The kernel gradient normalised on the lattice the builder places the particles on
@@ -101,7 +112,9 @@ class Simulation final : public Engine {
     water_ = WaterConstants<Real>{Real(config.water_density), Real(config.sound_speed), Real(config.delta),
                                   Real(config.viscosity_alpha)};
     // Pressures of the initial state (Eq. 6, the pore-water state and the boundary
-    // extrapolation), so that frame 0 has them.
+    // extrapolation), so that frame 0 has them. A share of a split run first settles which copies
+    // each process holds by the engine's own rule (share_particles), in its own precision.
+    if (transport_) share_particles();
     sort_by_cell();
     boundary_values(false);
     density_gradients();
@@ -112,6 +125,7 @@ class Simulation final : public Engine {
   // parent's step boundary then waits for the state only); grid_ holds pointers into cells_'
   // arrays, so the copy's view is taken again from its own.
   std::unique_ptr<Engine> clone() const override {
+    refuse_when_partitioned("a fork");
     auto copy = std::make_unique<Simulation>(*this);
     copy->grid_ = copy->cells_.view();
     return copy;
@@ -119,11 +133,13 @@ class Simulation final : public Engine {
 
   void step() override {
     update_lists();
+    refresh_halo();
     evaluate_rates(false);
     dt_ = next_time_step();
     save_step_start();
     launch(SymplecticPredictor<Real, Dim>{view(), start_view(), grid_, Real(dt_)}, 0, moving_);
     update_soil_stress(0.5 * dt_);
+    refresh_halo();
     evaluate_rates(true);
     account_pore_water();
     if (has_soil_ && !relaxing())  // a_s is part of the seepage, held while relaxing
@@ -144,6 +160,7 @@ class Simulation final : public Engine {
   void refresh_seepage() override {
     if (!has_soil_ || relaxing()) return;
     update_lists();
+    refresh_halo();
     launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_, raw(dummy_flags_)}, moving_, active_);
     pore_water_gradients();
     seepage_discharge();
@@ -195,6 +212,7 @@ class Simulation final : public Engine {
   }
 
   EngineState state() const override {
+    refuse_when_partitioned("a checkpoint");
     EngineState s;
     s.dimensions = Dim;
     s.single_precision = std::is_same_v<Real, float>;
@@ -208,6 +226,7 @@ class Simulation final : public Engine {
   }
 
   void restore(const EngineState& s) override {
+    refuse_when_partitioned("a restore");
     if (s.dimensions != Dim || s.single_precision != std::is_same_v<Real, float> || s.particles != phase_.size())
       throw std::invalid_argument("the state is of a " + std::to_string(s.dimensions) + "D engine in " +
                                   (s.single_precision ? "float" : "double") + " with " + std::to_string(s.particles) +
@@ -236,6 +255,7 @@ class Simulation final : public Engine {
     add(dummy_pore_pressure_), add(dummy_stress_), add(dummy_velocity_), add(wall_), add(wall_pore_pressure_);
     add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
     add(unbalanced_acceleration_), add(pore_water_inflow_), add(pore_water_blocks_), add(pore_water_totals_);
+    add(owner_);
     return bytes + cells_.bytes() + neighbours_.bytes();
   }
 
@@ -267,8 +287,9 @@ class Simulation final : public Engine {
     FieldFrame::RealField num{"numerical_density", "kg/m^3", 1, std::vector<double>(n)};
     // 2D cases are (x, z): written as (x, 0, z).
     const int axis3[3] = {0, Dim == 2 ? -1 : 1, Dim == 2 ? 1 : 2};
+    const std::vector<std::uint32_t> slot = slots_by_id(id);
     for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t i = id[k];  // ordered by id
+      const std::size_t i = slot[k];  // ordered by id
       for (int c = 0; c < 3; ++c) {
         f.position[3 * i + c] = axis3[c] < 0 ? 0.0 : double(position[k][axis3[c]]);
         vel.values[3 * i + c] = axis3[c] < 0 ? 0.0 : double(velocity[k][axis3[c]]);
@@ -283,13 +304,31 @@ class Simulation final : public Engine {
     // their phase and last state in the frame, flagged here, so that no count of a phase can
     // hide them (docs/output.md).
     FieldFrame::RealField lost{"lost", "1", 1, std::vector<double>(n)};
-    for (std::size_t k = active_; k < n; ++k) lost.values[id[k]] = 1.0;
+    for (std::size_t k = active_; k < n; ++k) lost.values[slot[k]] = 1.0;
     f.fields = {std::move(vel), std::move(pres), std::move(dens), std::move(num), std::move(lost)};
-    if (has_soil_) add_soil_fields(f, id, pressure, axis3);
+    if (transport_) {
+      // The process that owns each particle: the one whose values of it count (partition.h).
+      const thrust::host_vector<std::uint32_t> owner(owner_.begin(), owner_.end());
+      FieldFrame::RealField process{"process", "1", 1, std::vector<double>(n)};
+      for (std::size_t k = 0; k < n; ++k) process.values[slot[k]] = double(owner[k]);
+      f.fields.push_back(std::move(process));
+    }
+    if (has_soil_) add_soil_fields(f, id, slot, pressure, axis3);
     return f;
   }
 
  private:
+  // Where each particle goes in a frame ordered by id: its id, or, in a process's share of a
+  // split run (whose ids are those of the whole run), the rank of its id among the share's.
+  std::vector<std::uint32_t> slots_by_id(const std::vector<std::uint32_t>& id) const {
+    if (!transport_) return id;
+    std::vector<std::uint32_t> order(id.size()), slot(id.size());
+    for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return id[a] < id[b]; });
+    for (std::uint32_t k = 0; k < order.size(); ++k) slot[order[k]] = k;
+    return slot;
+  }
+
   // The steps give no water values to the dummies that no particle lists (they rest at ρ_w0,
   // SolidBoundaryWater): a frame shows those the values their ghost nodes give now, computed
   // into copies, so that taking a frame changes nothing in the run.
@@ -391,8 +430,8 @@ class Simulation final : public Engine {
   }
 
   // The soil fields of docs/output.md, ordered by id like the others.
-  void add_soil_fields(FieldFrame& f, const std::vector<std::uint32_t>& id, const std::vector<Real>& pressure,
-                       const int* axis3) const {
+  void add_soil_fields(FieldFrame& f, const std::vector<std::uint32_t>& id, const std::vector<std::uint32_t>& slot,
+                       const std::vector<Real>& pressure, const int* axis3) const {
     const std::size_t n = id.size();
     std::vector<Real> porosity(n), saturation(n);
     std::vector<V> seepage(n), position(n);
@@ -419,7 +458,7 @@ class Simulation final : public Engine {
     thrust::copy(soil_material_.begin(), soil_material_.end(), material.begin());
     f.free_surface.assign(n, 0);
     for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t i = id[k];
+      const std::size_t i = slot[k];
       if (f.phase[i] != std::uint8_t(Phase::soil)) continue;
       pore.values[i] = double(pressure[k]);
       sat.values[i] = double(saturation[k]);
@@ -427,7 +466,7 @@ class Simulation final : public Engine {
       f.free_surface[i] = free_surface[k];
       for (int c = 0; c < 3; ++c) {
         q.values[3 * i + c] = axis3[c] < 0 ? 0.0 : double(seepage[k][axis3[c]]);
-        u.values[3 * i + c] = f.position[3 * i + c] - initial_position_[3 * i + c];
+        u.values[3 * i + c] = f.position[3 * i + c] - initial_position_[3 * std::size_t(id[k]) + c];
       }
       kappa.values[i] = double(plastic_strain[k]);
       // σ = σ' − S_w p_w I (Bishop, Eq. 7)
@@ -488,6 +527,7 @@ class Simulation final : public Engine {
     cells_.reorder(water_density_, start_density_);
     cells_.reorder(phase_, scratch_phase_);
     cells_.reorder(id_, scratch_index_);
+    if (transport_) cells_.reorder(owner_, scratch_index_);
     if (has_soil_) {
       // Carried from step to step: the material, the porosity, the surface state and the last
       // seepage discharge that decides it (pore_water_state.h). The rest is recomputed.
@@ -512,6 +552,7 @@ class Simulation final : public Engine {
     neighbours_.build(grid_, position_, moving_);
     launch(DummyVisibility<Real, Dim>{grid_, raw(position_), raw(dummy_flags_)}, moving_, active_);
     thrust::copy(Backend::policy(), position_.begin(), position_.end(), listed_position_.begin());
+    if (transport_) map_halo();
   }
 
   // The neighbour lists of the coming steps are those built at the listed positions, in the
@@ -529,7 +570,9 @@ class Simulation final : public Engine {
   // then kept while they hold and rebuilt at the current positions when they do not.
   void update_lists() {
     if (!neighbours_.built()) list_at_listed_positions();
-    if (!lists_hold()) sort_by_cell();
+    if (lists_hold()) return;
+    if (transport_) share_particles();
+    sort_by_cell();
   }
 
   // Whether the cell sort and the neighbour lists of the last build still hold for the coming
@@ -546,6 +589,10 @@ class Simulation final : public Engine {
         thrust::counting_iterator<std::uint32_t>(std::uint32_t(moving_)),
         ListDrift<Real, Dim>{grid_, raw(position_), raw(listed_position_), raw(velocity_), Real(0.5 * max_dt)},
         Real(0), MaximumOf<Real>());
+    // Split over processes, all rebuild together: the halos change with the lists.
+    if (transport_)
+      return transport_->maximum(drift == drift ? double(drift) : std::numeric_limits<double>::infinity()) <
+             double(half_skin);
     return drift < half_skin;  // false for NaN
   }
 
@@ -622,6 +669,10 @@ class Simulation final : public Engine {
     using BlockSum = PoreWaterInflowBlockSum<Real>;
     const std::uint32_t begin = grid_.water_end, end = std::uint32_t(moving_);
     const std::uint32_t blocks = (end - begin + BlockSum::kBlock - 1) / BlockSum::kBlock;
+    if (transport_)  // the copies of other processes' particles: their owners account for them
+      thrust::replace_if(Backend::policy(), pore_water_inflow_.begin() + begin, pore_water_inflow_.begin() + end,
+                         owner_.begin() + begin, OwnedElsewhere{process()},
+                         PoreWaterInflow<Real>{Real(0), Real(0), Real(0)});
     pore_water_blocks_.resize(std::max<std::uint32_t>(blocks, 1));
     thrust::transform(Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
                       thrust::counting_iterator<std::uint32_t>(blocks), pore_water_blocks_.begin(),
@@ -642,8 +693,10 @@ class Simulation final : public Engine {
   SurfaceForcing<Real, Dim> surface_forcing() const { return SurfaceForcing<Real, Dim>::from(forcing_); }
 
   // The soil arrays, only for a case with soil particles.
-  void set_up_soil(const HostParticles& host) {
-    has_soil_ = host.count(Phase::soil) > 0;
+  // A process's share of a split run has the soil arrays when the run has soil, whether or not
+  // its share holds any, so that every process lists the same arrays (particle_rows.h).
+  void set_up_soil(const HostParticles& host, const PartitionSetup* partition) {
+    has_soil_ = partition ? partition->soil : host.count(Phase::soil) > 0;
     if (!has_soil_) return;
     const std::size_t n = host.size();
     // The initial positions by id, on the host, for the displacement.
@@ -652,6 +705,7 @@ class Simulation final : public Engine {
     for (std::size_t i = 0; i < n; ++i) {
       for (int c = 0; c < 3; ++c) initial_position_[3 * i + c] = axis3[c] < 0 ? 0.0 : host.position[i * Dim + axis3[c]];
     }
+    if (partition) initial_position_ = partition->initial_position;
     std::vector<std::uint8_t> material(n, 0);
     std::vector<Real> porosity(n, Real(0));
     std::vector<Voigt<Real>> stress(n, Voigt<Real>::Zero());
@@ -701,8 +755,15 @@ class Simulation final : public Engine {
   }
 
   double next_time_step() {
-    const Real limit = thrust::reduce(Backend::policy(), step_limit_.begin(), step_limit_.begin() + moving_,
-                                      std::numeric_limits<Real>::max(), MinimumOf<Real>());
+    Real limit = thrust::reduce(Backend::policy(), step_limit_.begin(), step_limit_.begin() + moving_,
+                                std::numeric_limits<Real>::max(), MinimumOf<Real>());
+    if (transport_) {  // the owned particles of every process: one step for the whole run
+      limit = thrust::transform_reduce(Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
+                                       thrust::counting_iterator<std::uint32_t>(std::uint32_t(moving_)),
+                                       OwnedStepLimit<Real>{raw(step_limit_), raw(owner_), process()},
+                                       std::numeric_limits<Real>::max(), MinimumOf<Real>());
+      limit = Real(transport_->minimum(double(limit)));
+    }
     if (limit < Real(0))
       throw SimulationFailure("the state holds NaN or infinity at t = " + number(time_) + " s, step " +
                               std::to_string(steps_) + ": a rate of change is not finite at " +
@@ -744,6 +805,186 @@ class Simulation final : public Engine {
     return std::string(kPhases[std::size_t(phase) < 3 ? std::size_t(phase) : 2]) + " particle id " +
            std::to_string(std::uint32_t(id_[i])) + " at " + where + ", speed " + number(double(v.norm())) +
            " m/s, density " + number(double(water_density_[i])) + " kg/m³";
+  }
+
+  // A run split over processes (partition.h). Each process steps its share: the particles it
+  // owns, copies of the other processes' particles within its halo, and the dummies there. The
+  // copies take their owners' values before every rate evaluation (refresh_halo), so that each
+  // owned particle's rates are those of the whole run; the copies' own results are discarded.
+  // The halo covers what an evaluation reads around an owned particle (DistributedEngine).
+  std::uint32_t process() const { return std::uint32_t(transport_->process()); }
+
+  void refuse_when_partitioned(const char* what) const {
+    if (transport_)
+      throw std::invalid_argument(std::string(what) + " of a run split over processes is not supported yet (issue 17)");
+  }
+
+  // Every array with one value per particle, in the same order on every process: what a
+  // particle that changes process takes along and what a copy is refreshed with. The dummies'
+  // soil-side arrays and the lists are each process's own.
+  template <typename F>
+  void for_each_particle_array(F&& f) {
+    f(position_), f(velocity_), f(ghost_), f(acceleration_), f(water_density_gradient_);
+    f(start_position_), f(start_velocity_), f(listed_position_);
+    f(density_), f(water_density_), f(pressure_), f(density_rate_), f(water_density_rate_), f(step_limit_);
+    f(start_density_), f(start_water_density_), f(phase_), f(id_), f(owner_), f(dummy_flags_);
+    if (!has_soil_) return;
+    f(soil_material_), f(free_surface_), f(surface_state_), f(wall_), f(porosity_), f(saturation_);
+    f(conductivity_), f(seepage_), f(skeleton_acceleration_), f(effective_stress_), f(start_stress_);
+    f(velocity_gradient_), f(porosity_rate_), f(plastic_strain_), f(start_plastic_strain_), f(start_porosity_);
+    f(unbalanced_acceleration_), f(pore_water_inflow_);
+  }
+
+  // A message of whole particles: their count, then every array's values at `rows`.
+  std::vector<char> pack_particles(const std::vector<std::uint32_t>& rows) {
+    std::vector<char> bytes(sizeof(std::uint64_t));
+    const std::uint64_t count = rows.size();
+    std::memcpy(bytes.data(), &count, sizeof count);
+    const Vector<std::uint32_t> on_backend(rows.begin(), rows.end());
+    for_each_particle_array([&](auto& array) { ParticleRows<Backend>::pack(array, on_backend, bytes); });
+    return bytes;
+  }
+
+  // Keeps the particles at `kept` (in that order) and appends those of the messages.
+  void keep_and_receive(const std::vector<std::uint32_t>& kept, const std::vector<std::vector<char>>& messages) {
+    std::vector<std::size_t> offset(messages.size(), sizeof(std::uint64_t)), count(messages.size(), 0);
+    for (std::size_t m = 0; m < messages.size(); ++m) {
+      if (messages[m].empty()) continue;
+      std::uint64_t c = 0;
+      std::memcpy(&c, messages[m].data(), sizeof c);
+      count[m] = std::size_t(c);
+    }
+    const Vector<std::uint32_t> on_backend(kept.begin(), kept.end());
+    for_each_particle_array([&](auto& array) {
+      using T = typename std::decay_t<decltype(array)>::value_type;
+      std::vector<T> received;
+      for (std::size_t m = 0; m < messages.size(); ++m) {
+        if (messages[m].empty()) continue;
+        const std::vector<T> part = ParticleRows<Backend>::template read<T>(messages[m], offset[m], count[m]);
+        received.insert(received.end(), part.begin(), part.end());
+      }
+      ParticleRows<Backend>::keep_and_append(array, on_backend, received);
+    });
+  }
+
+  // At a list rebuild, before the sort: an owned particle that has crossed into another slab goes
+  // to that slab's process; then the copies are dropped and each process sends every other the
+  // particles it owns within that process's halo. Dummies never move and stay where they are;
+  // so do particles that left the domain (their owner counts them lost).
+  void share_particles() {
+    const std::uint32_t me = process();
+    const int processes = transport_->processes();
+    const GridView<Real, Dim> domain = cells_.view();
+    auto moving_inside = [&](const thrust::host_vector<V>& x, const thrust::host_vector<Phase>& phase, std::size_t k) {
+      return phase[k] != Phase::boundary && domain.contains(x[k]);
+    };
+    {
+      const thrust::host_vector<V> position(position_.begin(), position_.end());
+      const thrust::host_vector<Phase> phase(phase_.begin(), phase_.end());
+      thrust::host_vector<std::uint32_t> owner(owner_.begin(), owner_.end());
+      std::vector<std::uint32_t> kept;
+      std::vector<std::vector<std::uint32_t>> leaving(processes);
+      for (std::uint32_t k = 0; k < phase.size(); ++k) {
+        if (phase[k] != Phase::boundary && owner[k] != me) continue;  // a copy
+        const int to = moving_inside(position, phase, k) ? slabs_.owner_of(double(position[k][slabs_.axis])) : int(me);
+        if (to == int(me)) {
+          kept.push_back(k);
+        } else {
+          leaving[to].push_back(k);
+          owner[k] = std::uint32_t(to);
+        }
+      }
+      owner_ = owner;
+      std::vector<std::vector<char>> send(processes);
+      for (int r = 0; r < processes; ++r)
+        if (!leaving[r].empty()) send[r] = pack_particles(leaving[r]);
+      keep_and_receive(kept, transport_->exchange(send));
+    }
+    const thrust::host_vector<V> position(position_.begin(), position_.end());
+    const thrust::host_vector<Phase> phase(phase_.begin(), phase_.end());
+    const thrust::host_vector<std::uint32_t> owner(owner_.begin(), owner_.end());
+    std::vector<std::vector<std::uint32_t>> copies(processes);
+    for (std::uint32_t k = 0; k < phase.size(); ++k) {
+      if (owner[k] != me || !moving_inside(position, phase, k)) continue;
+      for (int r = 0; r < processes; ++r)
+        if (r != int(me) && slabs_.distance_to(r, double(position[k][slabs_.axis])) < slabs_.halo) copies[r].push_back(k);
+    }
+    std::vector<std::vector<char>> send(processes);
+    for (int r = 0; r < processes; ++r)
+      if (!copies[r].empty()) send[r] = pack_particles(copies[r]);
+    std::vector<std::uint32_t> all(phase.size());
+    for (std::uint32_t k = 0; k < all.size(); ++k) all[k] = k;
+    keep_and_receive(all, transport_->exchange(send));
+  }
+
+  // After the sort: the rows that refresh_halo sends to each process and those it fills from
+  // each. Process r holds copies of this process's particles that were within r's halo at
+  // share_particles (the sort moved none), and both sides order them by id. The ids are
+  // exchanged once per rebuild to check that both sides agree.
+  void map_halo() {
+    const std::uint32_t me = process();
+    const int processes = transport_->processes();
+    const thrust::host_vector<V> position(position_.begin(), position_.begin() + moving_);
+    const thrust::host_vector<std::uint32_t> owner(owner_.begin(), owner_.begin() + moving_);
+    const thrust::host_vector<std::uint32_t> id(id_.begin(), id_.begin() + moving_);
+    std::vector<std::vector<std::uint32_t>> send(processes), receive(processes);
+    for (std::uint32_t k = 0; k < moving_; ++k) {
+      if (owner[k] != me) {
+        receive[owner[k]].push_back(k);
+        continue;
+      }
+      for (int r = 0; r < processes; ++r)
+        if (r != int(me) && slabs_.distance_to(r, double(position[k][slabs_.axis])) < slabs_.halo) send[r].push_back(k);
+    }
+    auto by_id = [&](std::uint32_t a, std::uint32_t b) { return id[a] < id[b]; };
+    std::vector<std::vector<char>> sent_ids(processes);
+    for (int r = 0; r < processes; ++r) {
+      std::sort(send[r].begin(), send[r].end(), by_id);
+      std::sort(receive[r].begin(), receive[r].end(), by_id);
+      for (std::uint32_t k : send[r]) {
+        const char* bytes = reinterpret_cast<const char*>(&id[k]);
+        sent_ids[r].insert(sent_ids[r].end(), bytes, bytes + sizeof(std::uint32_t));
+      }
+    }
+    const auto received_ids = transport_->exchange(sent_ids);
+    halo_send_.assign(processes, Vector<std::uint32_t>());
+    halo_receive_.assign(processes, Vector<std::uint32_t>());
+    for (int r = 0; r < processes; ++r) {
+      bool same = received_ids[r].size() == receive[r].size() * sizeof(std::uint32_t);
+      for (std::size_t m = 0; same && m < receive[r].size(); ++m) {
+        std::uint32_t sent = 0;
+        std::memcpy(&sent, received_ids[r].data() + m * sizeof sent, sizeof sent);
+        same = sent == id[receive[r][m]];
+      }
+      if (!same)
+        throw std::logic_error("process " + std::to_string(me) + " holds other copies of process " + std::to_string(r) +
+                               "'s particles than that process refreshes");
+      halo_send_[r] = Vector<std::uint32_t>(send[r].begin(), send[r].end());
+      halo_receive_[r] = Vector<std::uint32_t>(receive[r].begin(), receive[r].end());
+    }
+  }
+
+  // Before each rate evaluation: every copy takes its owner's values of every array (the owners
+  // have reached the same point of the same step).
+  void refresh_halo() {
+    if (!transport_) return;
+    const int processes = transport_->processes();
+    std::vector<std::vector<char>> send(processes);
+    for (int r = 0; r < processes; ++r)
+      if (!halo_send_[r].empty())
+        for_each_particle_array([&](auto& array) { ParticleRows<Backend>::pack(array, halo_send_[r], send[r]); });
+    const auto received = transport_->exchange(send);
+    for (int r = 0; r < processes; ++r) {
+      if (halo_receive_[r].empty()) continue;
+      std::size_t offset = 0;
+      for_each_particle_array([&](auto& array) {
+        using T = typename std::decay_t<decltype(array)>::value_type;
+        ParticleRows<Backend>::scatter(
+            array, halo_receive_[r], ParticleRows<Backend>::template read<T>(received[r], offset, halo_receive_[r].size()));
+      });
+      if (offset != received[r].size())
+        throw std::logic_error("process " + std::to_string(r) + " sent more than the copies it refreshes");
+    }
   }
 
   void save_step_start() {
@@ -793,18 +1034,24 @@ class Simulation final : public Engine {
   Vector<double> pore_water_totals_ = std::vector<double>(3, 0.0);  // rain, walls, surface since the clock's start
   std::vector<double> initial_position_;  // host, by id: N × 3
   Vector<std::uint32_t> id_, scratch_index_;
+  Transport* transport_ = nullptr;  // a run split over processes (partition.h); null for one process
+  Slabs slabs_;
+  Vector<std::uint32_t> owner_;     // with a transport: per particle, the process that owns it
+  std::vector<Vector<std::uint32_t>> halo_send_, halo_receive_;  // per process: rows (map_halo)
 };
 
 // The engine on one backend, in the precision and dimension the configuration asks for.
+// With a partition: a process's share of a split run (partition.h).
 template <typename Backend>
-std::unique_ptr<Engine> make_simulation(const EngineConfig& config, const HostParticles& particles) {
+std::unique_ptr<Engine> make_simulation(const EngineConfig& config, const HostParticles& particles,
+                                        const PartitionSetup* partition = nullptr) {
   const bool single = config.precision == Precision::single_precision;
   if (config.dimensions == 2)
-    return single ? std::unique_ptr<Engine>(std::make_unique<Simulation<float, 2, Backend>>(config, particles))
-                  : std::make_unique<Simulation<double, 2, Backend>>(config, particles);
+    return single ? std::unique_ptr<Engine>(std::make_unique<Simulation<float, 2, Backend>>(config, particles, partition))
+                  : std::make_unique<Simulation<double, 2, Backend>>(config, particles, partition);
   if (config.dimensions == 3)
-    return single ? std::unique_ptr<Engine>(std::make_unique<Simulation<float, 3, Backend>>(config, particles))
-                  : std::make_unique<Simulation<double, 3, Backend>>(config, particles);
+    return single ? std::unique_ptr<Engine>(std::make_unique<Simulation<float, 3, Backend>>(config, particles, partition))
+                  : std::make_unique<Simulation<double, 3, Backend>>(config, particles, partition);
   throw std::invalid_argument("dimensions must be 2 or 3");
 }
 

@@ -1,0 +1,86 @@
+// Rows of the per-particle arrays, for a run split over processes (partition.h): some particles'
+// values of every array copied into bytes and back. A message holds one block per array, in the
+// order Simulation::for_each_particle_array lists them, each the rows' values one after another;
+// every process lists the same arrays, so the blocks need no names. Host-staged: the rows are
+// gathered on the backend and copied through the host (issue 17 allows it for the CUDA backend).
+#pragma once
+
+#include <thrust/copy.h>
+#include <thrust/gather.h>
+#include <thrust/scatter.h>
+
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "server/core/backend.h"
+#include "server/core/types.h"
+
+namespace cascade {
+
+template <typename Backend>
+struct ParticleRows {
+  template <typename T>
+  using Vector = typename Backend::template Vector<T>;
+
+  // Appends the values of `array` at `rows` to `bytes`.
+  template <typename T>
+  static void pack(const Vector<T>& array, const Vector<std::uint32_t>& rows, std::vector<char>& bytes) {
+    Vector<T> picked(rows.size());
+    thrust::gather(Backend::policy(), rows.begin(), rows.end(), array.begin(), picked.begin());
+    std::vector<T> host(picked.size());
+    thrust::copy(picked.begin(), picked.end(), host.begin());
+    const std::size_t at = bytes.size();
+    bytes.resize(at + host.size() * sizeof(T));
+    if (!host.empty()) std::memcpy(bytes.data() + at, host.data(), host.size() * sizeof(T));
+  }
+
+  // The next `count` values of type T in `bytes` from `offset`, which it advances.
+  template <typename T>
+  static std::vector<T> read(const std::vector<char>& bytes, std::size_t& offset, std::size_t count) {
+    if (offset + count * sizeof(T) > bytes.size())
+      throw std::runtime_error("a message between processes is shorter than the rows it announces");
+    std::vector<T> values(count);
+    if (count) std::memcpy(static_cast<void*>(values.data()), bytes.data() + offset, count * sizeof(T));
+    offset += count * sizeof(T);
+    return values;
+  }
+
+  // array[rows[k]] = values[k].
+  template <typename T>
+  static void scatter(Vector<T>& array, const Vector<std::uint32_t>& rows, const std::vector<T>& values) {
+    const Vector<T> staged(values.begin(), values.end());
+    thrust::scatter(Backend::policy(), staged.begin(), staged.end(), rows.begin(), array.begin());
+  }
+
+  // Keeps the rows `rows` of `array`, in that order, and appends `values` after them.
+  template <typename T>
+  static void keep_and_append(Vector<T>& array, const Vector<std::uint32_t>& rows, const std::vector<T>& values) {
+    Vector<T> kept(rows.size() + values.size());
+    thrust::gather(Backend::policy(), rows.begin(), rows.end(), array.begin(), kept.begin());
+    thrust::copy(values.begin(), values.end(), kept.begin() + rows.size());
+    array.swap(kept);
+  }
+};
+
+// The step limit of the particles this process owns (Eq. 40), the largest Real for the copies of
+// other processes' particles, which their owners limit.
+template <typename Real>
+struct OwnedStepLimit {
+  const Real* step_limit;
+  const std::uint32_t* owner;
+  std::uint32_t process;
+  CASCADE_HD Real operator()(std::uint32_t i) const {
+    return owner[i] == process ? step_limit[i] : std::numeric_limits<Real>::max();
+  }
+};
+
+// A copy of another process's particle.
+struct OwnedElsewhere {
+  std::uint32_t process;
+  CASCADE_HD bool operator()(std::uint32_t owner) const { return owner != process; }
+};
+
+}  // namespace cascade
