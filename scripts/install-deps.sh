@@ -10,6 +10,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libgles-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
   libvtk9-dev libgdal-dev
+  # runs split over processes (mpirun, server/parallel/)
+  libopenmpi-dev openmpi-bin
   python3 python3-numpy python3-h5py python3-matplotlib python3-yaml
   python3-grpcio python3-protobuf python3-grpc-tools
   # the dashboard (clients/dashboard) and its browser test: Chart.js, headless Chromium, Selenium

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -97,9 +98,21 @@ inline const char* bound_name(Bound b) {
 
 inline std::filesystem::path table_dir() { return std::filesystem::path(CASCADE_BINARY_DIR) / "validation"; }
 
+// A test program that ctest runs in several configurations (tests/parallel: under mpirun at 1 to
+// 4 processes) names each in CASCADE_VALIDATION_VARIANT, which the test's name in the table takes
+// as a suffix, so that each configuration keeps its own figures.
+inline std::string variant_suffix() {
+  const char* variant = std::getenv("CASCADE_VALIDATION_VARIANT");
+  return variant && *variant ? std::string(".") + variant : std::string();
+}
+
+inline std::string test_name(const ::testing::TestInfo& info) {
+  return std::string(info.test_suite_name()) + "." + info.name() + variant_suffix();
+}
+
 inline std::string current_test_name() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  return info ? std::string(info->test_suite_name()) + "." + info->name() : "unknown";
+  return info ? test_name(*info) : "unknown";
 }
 
 inline std::filesystem::path figures_file(const std::string& test) { return table_dir() / (test + ".jsonl"); }
@@ -108,7 +121,7 @@ inline std::filesystem::path figures_file(const std::string& test) { return tabl
 class StaleFigureRemover : public ::testing::EmptyTestEventListener {
   void OnTestStart(const ::testing::TestInfo& info) override {
     std::error_code ignored;
-    std::filesystem::remove(figures_file(std::string(info.test_suite_name()) + "." + info.name()), ignored);
+    std::filesystem::remove(figures_file(test_name(info)), ignored);
   }
 };
 
@@ -128,7 +141,9 @@ inline std::string utc_now() {
 
 inline void append(const Figure& f, bool pass) {
   const std::string test = current_test_name();
-  const bool known_failure = test.size() >= 12 && test.compare(test.size() - 12, 12, "KnownFailure") == 0;
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string name = info ? info->name() : "";
+  const bool known_failure = name.size() >= 12 && name.compare(name.size() - 12, 12, "KnownFailure") == 0;
   std::ostringstream line;
   line << "{\"test\": " << json_string(test) << ", \"case\": " << json_string(f.case_name)
        << ", \"reference\": " << json_string(f.reference) << ", \"metric\": " << json_string(f.metric)

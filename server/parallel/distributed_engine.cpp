@@ -1,0 +1,224 @@
+#include "server/parallel/distributed_engine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "server/core/neighbour_list.h"
+
+namespace cascade {
+namespace {
+
+// Appends the bytes of `count` values.
+template <typename T>
+void put(std::vector<char>& out, const T* values, std::size_t count) {
+  const std::size_t at = out.size();
+  out.resize(at + count * sizeof(T));
+  if (count) std::memcpy(out.data() + at, values, count * sizeof(T));
+}
+
+template <typename T>
+void take(const std::vector<char>& in, std::size_t& offset, T* values, std::size_t count) {
+  if (offset + count * sizeof(T) > in.size()) throw std::logic_error("a process's frame message is short");
+  if (count) std::memcpy(values, in.data() + offset, count * sizeof(T));
+  offset += count * sizeof(T);
+}
+
+}  // namespace
+
+double halo_width(const EngineConfig& config, const HostParticles& whole) {
+  const int dim = whole.dimensions;
+  double ghost_reach = 0;
+  for (std::size_t i = 0; i < whole.size(); ++i) {
+    if (whole.phase[i] != Phase::boundary) continue;
+    double r2 = 0;
+    for (int a = 0; a < dim; ++a) {
+      const double d = whole.ghost[i * dim + a] - whole.position[i * dim + a];
+      r2 += d * d;
+    }
+    ghost_reach = std::max(ghost_reach, std::sqrt(r2));
+  }
+  const double list_radius = 2.0 * kListRadius * config.h;
+  const double skin = 2.0 * (kListRadius - 1.0) * config.h;
+  return 4.0 * list_radius + ghost_reach + skin;
+}
+
+Slabs slabs_for(const EngineConfig& config, const HostParticles& whole, int processes) {
+  if (processes < 1) throw std::invalid_argument("a run needs at least one process");
+  const int dim = whole.dimensions;
+  Slabs slabs;
+  slabs.axis = -1;
+  double longest = -1;
+  for (int a = 0; a < dim; ++a) {  // the longest extent of the moving particles
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (std::size_t i = 0; i < whole.size(); ++i)
+      if (whole.phase[i] != Phase::boundary)
+        low = std::min(low, whole.position[i * dim + a]), high = std::max(high, whole.position[i * dim + a]);
+    if (!config.periodic[a] && high - low > longest) longest = high - low, slabs.axis = a;
+  }
+  if (slabs.axis < 0)
+    throw std::invalid_argument("a run split over processes needs an axis that is not periodic to cut along");
+  std::vector<double> x;
+  for (std::size_t i = 0; i < whole.size(); ++i)
+    if (whole.phase[i] != Phase::boundary) x.push_back(whole.position[i * dim + slabs.axis]);
+  std::sort(x.begin(), x.end());
+  if (x.size() < std::size_t(processes))
+    throw std::invalid_argument("a run of " + std::to_string(x.size()) + " moving particles cannot be split over " +
+                                std::to_string(processes) + " processes");
+  slabs.cut.assign(processes + 1, 0.0);
+  slabs.cut.front() = -std::numeric_limits<double>::infinity();
+  slabs.cut.back() = std::numeric_limits<double>::infinity();
+  for (int r = 1; r < processes; ++r) {
+    const std::size_t k = x.size() * std::size_t(r) / std::size_t(processes);
+    slabs.cut[r] = 0.5 * (x[k - 1] + x[k]);  // between two particles
+  }
+  slabs.halo = halo_width(config, whole);
+  return slabs;
+}
+
+DistributedEngine::DistributedEngine(const EngineConfig& config, const HostParticles& whole, Transport& transport)
+    : transport_(transport), slabs_(slabs_for(config, whole, transport.processes())), particles_(whole.size()) {
+  const int dim = whole.dimensions;
+  const int me = transport.process();
+  PartitionSetup setup;
+  setup.transport = &transport;
+  setup.slabs = slabs_;
+  setup.soil = whole.count(Phase::soil) > 0;
+  // This process's share to start from: the moving particles it owns and the dummies within its
+  // halo. The engine sends the copies itself (Simulation::share_particles).
+  HostParticles share;
+  share.dimensions = dim;
+  for (std::size_t i = 0; i < whole.size(); ++i) {
+    const double x = whole.position[i * dim + slabs_.axis];
+    const int owner = slabs_.owner_of(x);
+    const bool held = whole.phase[i] == Phase::boundary ? slabs_.distance_to(me, x) < slabs_.halo : owner == me;
+    if (!held) continue;
+    for (int a = 0; a < dim; ++a) {
+      share.position.push_back(whole.position[i * dim + a]);
+      share.velocity.push_back(whole.velocity[i * dim + a]);
+      share.ghost.push_back(whole.ghost[i * dim + a]);
+    }
+    share.water_density.push_back(whole.water_density[i]);
+    share.porosity.push_back(i < whole.porosity.size() ? whole.porosity[i] : 0.0);
+    if (i < whole.soil_material.size()) share.soil_material.push_back(whole.soil_material[i]);
+    if (whole.effective_stress.size() == 6 * whole.size())
+      share.effective_stress.insert(share.effective_stress.end(), whole.effective_stress.begin() + 6 * i,
+                                    whole.effective_stress.begin() + 6 * (i + 1));
+    share.phase.push_back(whole.phase[i]);
+    if (i < whole.body.size()) share.body.push_back(whole.body[i]);
+    setup.global_id.push_back(std::uint32_t(i));
+    setup.owner.push_back(std::uint32_t(owner));
+  }
+  if (setup.soil) {
+    const int axis3[3] = {0, dim == 2 ? -1 : 1, dim == 2 ? 1 : 2};
+    setup.initial_position.assign(3 * whole.size(), 0.0);
+    for (std::size_t i = 0; i < whole.size(); ++i)
+      for (int c = 0; c < 3; ++c)
+        setup.initial_position[3 * i + c] = axis3[c] < 0 ? 0.0 : whole.position[i * dim + axis3[c]];
+  }
+  share_ = make_share_engine(config, share, setup);
+}
+
+void DistributedEngine::refuse(const char* what) {
+  throw std::invalid_argument(std::string(what) + " of a run split over processes is not supported yet (issue 17)");
+}
+
+std::size_t DistributedEngine::lost_particles() const {
+  return std::size_t(transport_.sum(double(share_->lost_particles())));
+}
+
+std::size_t DistributedEngine::device_bytes() const {
+  return std::size_t(transport_.sum(double(share_->device_bytes())));
+}
+
+PoreWaterAccount DistributedEngine::pore_water_account() const {
+  const PoreWaterAccount own = share_->pore_water_account();
+  return {transport_.sum(own.rain), transport_.sum(own.walls), transport_.sum(own.surface)};
+}
+
+std::vector<std::size_t> DistributedEngine::share_sizes() const {
+  const std::uint64_t own = share_size();
+  std::vector<char> message(sizeof own);
+  std::memcpy(message.data(), &own, sizeof own);
+  const auto received = transport_.exchange(std::vector<std::vector<char>>(transport_.processes(), message));
+  std::vector<std::size_t> sizes;
+  for (const auto& in : received) {
+    std::uint64_t n = 0;
+    std::size_t offset = 0;
+    take(in, offset, &n, 1);
+    sizes.push_back(std::size_t(n));
+  }
+  return sizes;
+}
+
+void DistributedEngine::set_relaxation(double local_damping) {
+  if (local_damping != 0) refuse("a geostatic stage");
+  share_->set_relaxation(0);
+}
+
+// Each process sends every other the particles it owns (its share's frame, field "process"), and
+// each puts them together by id: the whole run's frame, as one process would give it.
+FieldFrame DistributedEngine::frame() const {
+  const FieldFrame own = share_->frame();
+  const auto* process = own.find("process");
+  if (!process) throw std::logic_error("a share's frame has no process field");
+  const int me = transport_.process();
+  std::vector<std::uint32_t> rows;
+  for (std::uint32_t k = 0; k < own.size(); ++k)
+    if (process->values[k] == double(me)) rows.push_back(k);
+
+  std::vector<char> message;
+  const std::uint64_t count = rows.size();
+  put(message, &count, 1);
+  const bool surface = !own.free_surface.empty();
+  for (std::uint32_t k : rows) {
+    put(message, &own.id[k], 1);
+    put(message, &own.position[3 * std::size_t(k)], 3);
+    put(message, &own.phase[k], 1);
+    if (surface) put(message, &own.free_surface[k], 1);
+    for (const auto& field : own.fields)
+      put(message, &field.values[std::size_t(k) * field.components], std::size_t(field.components));
+  }
+  const auto received = transport_.exchange(std::vector<std::vector<char>>(transport_.processes(), message));
+
+  FieldFrame whole;
+  whole.time = own.time;
+  whole.step = own.step;
+  whole.dimensions = own.dimensions;
+  const std::size_t n = particles_;
+  whole.position.assign(3 * n, 0.0);
+  whole.phase.assign(n, 0);
+  whole.id.assign(n, 0);
+  if (surface) whole.free_surface.assign(n, 0);
+  for (const auto& field : own.fields)
+    whole.fields.push_back({field.name, field.units, field.components,
+                            std::vector<double>(n * std::size_t(field.components), 0.0)});
+  std::vector<char> seen(n, 0);
+  std::size_t placed = 0;
+  for (const auto& in : received) {
+    std::size_t offset = 0;
+    std::uint64_t rows_in = 0;
+    take(in, offset, &rows_in, 1);
+    for (std::uint64_t m = 0; m < rows_in; ++m) {
+      std::uint32_t id = 0;
+      take(in, offset, &id, 1);
+      if (id >= n || seen[id]) throw std::logic_error("particle " + std::to_string(id) + " is owned twice or unknown");
+      seen[id] = 1, ++placed;
+      whole.id[id] = id;
+      take(in, offset, &whole.position[3 * std::size_t(id)], 3);
+      take(in, offset, &whole.phase[id], 1);
+      if (surface) take(in, offset, &whole.free_surface[id], 1);
+      for (auto& field : whole.fields)
+        take(in, offset, &field.values[std::size_t(id) * field.components], std::size_t(field.components));
+    }
+  }
+  if (placed != n)
+    throw std::logic_error("the processes own " + std::to_string(placed) + " of the run's " + std::to_string(n) +
+                           " particles");
+  return whole;
+}
+
+}  // namespace cascade

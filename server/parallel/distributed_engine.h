@@ -1,0 +1,67 @@
+// A run split over processes (issue 17), seen from outside as one Engine: every process builds the
+// whole case, keeps its share (server/core/partition.h) and steps it; what the run reports (time
+// step, lost particles, frames, the pore-water account) is reduced or gathered over the processes,
+// so that every process sees the same answers and the runner's code is the same on each. Every
+// method is collective: all processes call it, in the same order.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "server/core/engine.h"
+#include "server/core/partition.h"
+
+namespace cascade {
+
+// The slabs of a run over `processes`: along the axis, not periodic, on which the moving particles
+// spread farthest, cut so that
+// each holds as many moving particles as the others (within one), with the halo that one rate
+// evaluation reads around an owned particle (halo_width).
+Slabs slabs_for(const EngineConfig& config, const HostParticles& whole, int processes);
+
+// The width of the halo: four list radii (2h and the skin, neighbour_list.h) — an owned particle's
+// rates read its neighbours' renormalised gradients, which read the dummies near them, whose
+// boundary values read the particles around their ghost nodes, whose pore-water state reads their
+// free-surface flags, each within a list radius of the last — plus the farthest a dummy's ghost
+// node lies from it, plus the skin, by which particles may move between rebuilds of the halo.
+double halo_width(const EngineConfig& config, const HostParticles& whole);
+
+class DistributedEngine final : public Engine {
+ public:
+  // `whole`: the case's particle set, the same on every process.
+  DistributedEngine(const EngineConfig& config, const HostParticles& whole, Transport& transport);
+
+  void step() override { share_->step(); }
+  double time() const override { return share_->time(); }
+  std::uint64_t step_count() const override { return share_->step_count(); }
+  double last_dt() const override { return share_->last_dt(); }
+  std::size_t particle_count() const override { return particles_; }
+  std::size_t lost_particles() const override;
+  std::size_t device_bytes() const override;
+  FieldFrame frame() const override;  // the whole run's, on every process
+  const char* device_name() const override { return share_->device_name(); }
+  void set_forcing(const HydraulicForcing& forcing) override { share_->set_forcing(forcing); }
+  HydraulicForcing forcing() const override { return share_->forcing(); }
+  void restart_clock() override { refuse("an initialisation stage"); }
+  EngineState state() const override { refuse("a checkpoint"); }
+  void restore(const EngineState&) override { refuse("a restore"); }
+  std::unique_ptr<Engine> clone() const override { refuse("a fork"); }
+  PoreWaterAccount pore_water_account() const override;
+  void set_relaxation(double local_damping) override;
+  Equilibrium equilibrium() const override { refuse("a geostatic stage"); }
+  void zero_velocities() override { share_->zero_velocities(); }
+
+  const Slabs& slabs() const { return slabs_; }
+  std::size_t share_size() const { return share_->particle_count(); }  // owned, copies and dummies held
+  std::vector<std::size_t> share_sizes() const;                        // of every process, by process
+
+ private:
+  [[noreturn]] static void refuse(const char* what);
+
+  Transport& transport_;
+  Slabs slabs_;
+  std::size_t particles_ = 0;
+  std::unique_ptr<Engine> share_;
+};
+
+}  // namespace cascade

@@ -1,0 +1,66 @@
+#include "server/parallel/mpi_transport.h"
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace cascade {
+
+MpiSession::MpiSession(int* argc, char*** argv) {
+  int ready = 0;
+  MPI_Initialized(&ready);
+  if (!ready) MPI_Init(argc, argv);
+  // A failure is reported by the process that meets it, as an exception like any other; the
+  // default handler would abort every process without a message.
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+}
+
+MpiSession::~MpiSession() {
+  int done = 0;
+  MPI_Finalized(&done);
+  if (!done) MPI_Finalize();
+}
+
+MpiTransport::MpiTransport() {
+  MPI_Comm_size(MPI_COMM_WORLD, &processes_);
+  MPI_Comm_rank(MPI_COMM_WORLD, &process_);
+}
+
+double MpiTransport::reduce(double value, MPI_Op op) {
+  double result = 0;
+  if (MPI_Allreduce(&value, &result, 1, MPI_DOUBLE, op, MPI_COMM_WORLD) != MPI_SUCCESS)
+    throw std::runtime_error("MPI_Allreduce failed");
+  return result;
+}
+
+// The sizes first (one all-to-all), then the bytes (MPI_Alltoallv; a message between two
+// processes is limited to 2 GiB by MPI's int counts).
+std::vector<std::vector<char>> MpiTransport::exchange(const std::vector<std::vector<char>>& send) {
+  if (int(send.size()) != processes_) throw std::invalid_argument("exchange needs one message per process");
+  std::vector<int> send_count(processes_), receive_count(processes_), send_at(processes_), receive_at(processes_);
+  for (int r = 0; r < processes_; ++r) {
+    if (send[r].size() > std::size_t(std::numeric_limits<int>::max()))
+      throw std::runtime_error("a message to process " + std::to_string(r) + " exceeds 2 GiB");
+    send_count[r] = int(send[r].size());
+  }
+  if (MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, MPI_COMM_WORLD) != MPI_SUCCESS)
+    throw std::runtime_error("MPI_Alltoall failed");
+  std::vector<char> out, in;
+  int total_out = 0, total_in = 0;
+  for (int r = 0; r < processes_; ++r) {
+    send_at[r] = total_out, total_out += send_count[r];
+    receive_at[r] = total_in, total_in += receive_count[r];
+  }
+  out.resize(std::size_t(total_out));
+  for (int r = 0; r < processes_; ++r) std::copy(send[r].begin(), send[r].end(), out.begin() + send_at[r]);
+  in.resize(std::size_t(total_in));
+  if (MPI_Alltoallv(out.data(), send_count.data(), send_at.data(), MPI_BYTE, in.data(), receive_count.data(),
+                    receive_at.data(), MPI_BYTE, MPI_COMM_WORLD) != MPI_SUCCESS)
+    throw std::runtime_error("MPI_Alltoallv failed");
+  std::vector<std::vector<char>> received(processes_);
+  for (int r = 0; r < processes_; ++r)
+    received[r].assign(in.begin() + receive_at[r], in.begin() + receive_at[r] + receive_count[r]);
+  return received;
+}
+
+}  // namespace cascade

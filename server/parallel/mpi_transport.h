@@ -1,0 +1,35 @@
+// Transport (server/core/partition.h) over MPI's world communicator: one process per rank.
+#pragma once
+
+#include <mpi.h>
+
+#include "server/core/partition.h"
+
+namespace cascade {
+
+// MPI_Init on construction and MPI_Finalize on destruction, for a program launched by mpirun.
+class MpiSession {
+ public:
+  MpiSession(int* argc, char*** argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+};
+
+class MpiTransport final : public Transport {
+ public:
+  MpiTransport();  // over MPI_COMM_WORLD; MPI must be initialised
+  int processes() const override { return processes_; }
+  int process() const override { return process_; }
+  double minimum(double value) override { return reduce(value, MPI_MIN); }
+  double maximum(double value) override { return reduce(value, MPI_MAX); }
+  double sum(double value) override { return reduce(value, MPI_SUM); }
+  std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& send) override;
+
+ private:
+  double reduce(double value, MPI_Op op);
+  int processes_ = 1;
+  int process_ = 0;
+};
+
+}  // namespace cascade
