@@ -18,6 +18,7 @@
 #include "clients/cli/progress.h"
 #include "server/core/engine.h"
 #include "server/core/free_cores.h"
+#include "server/core/partition.h"
 #include "server/io/hdf5_writer.h"
 #include "server/io/journal.h"
 #include "server/io/probe_csv_writer.h"
@@ -36,6 +37,10 @@
 #include "server/scenario/rain_series.h"
 #include "server/scenario/soil_setup.h"
 #include "server/scenario/stage_setup.h"
+#if defined(CASCADE_HAVE_MPI)
+#include "server/parallel/distributed_engine.h"
+#include "server/parallel/mpi_transport.h"
+#endif
 
 namespace cascade::cli {
 
@@ -103,22 +108,36 @@ RunOptions parse_options(const std::vector<std::string>& args) {
 
 const char* precision_name(Precision p) { return p == Precision::single_precision ? "float" : "double"; }
 
+// The processes of an mpirun launch, from Open MPI's or MPICH's environment; 1 without one.
+int launched_processes() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* value = std::getenv(name)) return std::max(1, std::atoi(value));
+  return 1;
+}
+
 // Writes frames (with their PNG snapshots) and probes at their intervals. Frames every
 // `output.interval`, probes every `output.probe_interval`, both also at the start and at the end
 // of the run.
+//
+// In a run split over processes (`transport`), every process takes the frames and finds the same
+// events (DistributedEngine::frame gives each the whole run's), and process 0 alone writes the
+// files; whether it could is agreed on by all, so that a failed write stops every process.
 class Outputs {
  public:
-  Outputs(const v1::ScenarioSpec& spec, const std::filesystem::path& dir, double h, double mass)
+  Outputs(const v1::ScenarioSpec& spec, const std::filesystem::path& dir, double h, double mass,
+          Transport* transport = nullptr)
       : spec_(spec),
         sampler_(spec, h, mass),
         frame_interval_(stage_frame_interval(spec, 0)),
         probe_interval_(stage_probe_interval(spec, 0)),
-        snapshots_(spec, dir / "snapshots"),
-        events_(spec, h, sampler_.names()) {
+        events_(spec, h, sampler_.names()),
+        transport_(transport) {
+    if (transport_ && transport_->process() != 0) return;
     std::filesystem::create_directories(dir);
     if (!spec.output().has_hdf5() || spec.output().hdf5()) hdf5_ = std::make_unique<Hdf5FieldWriter>(dir / "fields.h5");
     if (spec.output().vtk()) vtk_ = std::make_unique<VtkSeriesWriter>(dir / "vtk");
     probes_ = std::make_unique<ProbeCsvWriter>(dir / "probes.csv", sampler_.names());
+    snapshots_ = std::make_unique<SnapshotWriter>(spec, dir / "snapshots");
   }
 
   // A new stage: its own intervals, counted from now.
@@ -139,20 +158,28 @@ class Outputs {
     if (!frame_due && !probe_due) return {};
     const FieldFrame frame = engine.frame();
     std::vector<CascadeEvent> fired;
-    if (probe_due) {
-      const std::vector<double> values = sampler_.sample(frame);
-      probes_->write_row(t, values);
-      fired = events_.observe(frame, values, engine.forcing().ponding_pressure);
-      next_probe_ = next_due_time(next_probe_, t, probe_interval_);
-      last_probe_time_ = t;
+    std::string failure;
+    try {
+      if (probe_due) {
+        const std::vector<double> values = sampler_.sample(frame);
+        if (probes_) probes_->write_row(t, values);
+        fired = events_.observe(frame, values, engine.forcing().ponding_pressure);
+        next_probe_ = next_due_time(next_probe_, t, probe_interval_);
+        last_probe_time_ = t;
+      }
+      if (frame_due) {
+        if (hdf5_) hdf5_->write(frame);
+        if (vtk_) vtk_->write(frame);
+        if (snapshots_) snapshots_->write(frame);
+        next_frame_ = next_due_time(next_frame_, t, frame_interval_);
+        last_frame_time_ = t;
+      }
+    } catch (const std::exception& e) {
+      failure = e.what();
+      if (!transport_) throw;
     }
-    if (frame_due) {
-      if (hdf5_) hdf5_->write(frame);
-      if (vtk_) vtk_->write(frame);
-      snapshots_.write(frame);
-      next_frame_ = next_due_time(next_frame_, t, frame_interval_);
-      last_frame_time_ = t;
-    }
+    if (transport_ && transport_->maximum(failure.empty() ? 0.0 : 1.0) > 0)
+      throw std::runtime_error(failure.empty() ? "process 0 could not write the outputs" : failure);
     return fired;
   }
 
@@ -164,8 +191,9 @@ class Outputs {
   std::unique_ptr<Hdf5FieldWriter> hdf5_;
   std::unique_ptr<VtkSeriesWriter> vtk_;
   std::unique_ptr<ProbeCsvWriter> probes_;
-  SnapshotWriter snapshots_;
+  std::unique_ptr<SnapshotWriter> snapshots_;
   CascadeEventDetector events_;
+  Transport* transport_;
 };
 
 std::string format_number(double v) {
@@ -286,6 +314,35 @@ int run_command(const std::vector<std::string>& args) {
     std::fprintf(stderr, "cascade run: %s\n", e.what());
     return 2;
   }
+  // Launched by mpirun as several processes: the run is split over them (issue 17,
+  // server/parallel/); process 0 writes the outputs and the console.
+  const int processes = launched_processes();
+#if defined(CASCADE_HAVE_MPI)
+  std::unique_ptr<MpiSession> mpi;
+  std::unique_ptr<MpiTransport> transport;
+  if (processes > 1) {
+    mpi = std::make_unique<MpiSession>(nullptr, nullptr);
+    transport = std::make_unique<MpiTransport>();
+  }
+  Transport* const split = transport.get();
+#else
+  if (processes > 1) {
+    std::fprintf(stderr, "cascade run: launched as %d processes, but this build has no MPI (configure with -DCASCADE_MPI=ON)\n",
+                 processes);
+    return 2;
+  }
+  Transport* const split = nullptr;
+#endif
+  const bool root = !split || split->process() == 0;
+  if (split && (spec.stages_size() > 0 || spec.has_initialisation())) {
+    if (root)
+      std::fprintf(stderr, "cascade run: %s: a case with stages or an initialisation stage cannot be split over "
+                   "processes yet (issue 17); run it as one process\n", options.case_path.c_str());
+    return 2;
+  }
+  std::FILE* const log = root ? stderr : std::fopen("/dev/null", "w");
+  if (!log) return 1;
+
   if (options.threads > 0) omp_set_num_threads(options.threads);
   // Without --threads, the team takes the cores that other processes leave free, measured again
   // about once a second while the run steps (free_cores.h).
@@ -301,6 +358,7 @@ int run_command(const std::vector<std::string>& args) {
   RunSummary summary;
   summary.case_name = spec.name();
   summary.precision = precision_name(options.precision);
+  summary.processes = processes;
   const auto& particles = set.particles;
   summary.particles = {particles.size(), particles.count(Phase::water), particles.count(Phase::soil),
                        particles.count(Phase::boundary)};
@@ -323,9 +381,22 @@ int run_command(const std::vector<std::string>& args) {
   int exit_code = 0;
   try {
     const EngineConfig config = engine_config(spec, particles, options.precision);
-    engine = make_case_engine(spec, config, particles, &make_engine);
-    Outputs outputs(spec, options.out_dir, config.h, config.water_density * std::pow(config.dp, config.dimensions));
-    std::fprintf(stderr,
+    EngineMaker make = &make_engine;
+#if defined(CASCADE_HAVE_MPI)
+    if (split)
+      make = [split](const EngineConfig& c, const HostParticles& p) -> std::unique_ptr<Engine> {
+        return std::make_unique<DistributedEngine>(c, p, *split);
+      };
+#endif
+    engine = make_case_engine(spec, config, particles, make);
+    Outputs outputs(spec, options.out_dir, config.h, config.water_density * std::pow(config.dp, config.dimensions),
+                    split);
+#if defined(CASCADE_HAVE_MPI)
+    if (split)
+      std::fprintf(log, "cascade run: split over %d processes (mpirun): slabs along axis %d, halo %g m\n", processes,
+                   slabs_for(config, particles, processes).axis, halo_width(config, particles));
+#endif
+    std::fprintf(log,
                  "cascade run: %s, %zu particles (%zu water, %zu soil, %zu boundary), dp = %g m, h = %g m, "
                  "c0 = %.3f m/s, %s on %s with %d threads%s, until t = %g s\n",
                  spec.name().c_str(), particles.size(), std::size_t(summary.particles.water),
@@ -335,7 +406,7 @@ int run_command(const std::vector<std::string>& args) {
                  options.threads > 0 ? "" : " (the cores that other processes leave free)", end_time);
     if (spec.has_initialisation()) {
       // Before t = 0, without outputs: the main stage and every output start at its end.
-      std::fprintf(stderr, "cascade run: initialisation stage of %g s\n", spec.initialisation().duration());
+      std::fprintf(log, "cascade run: initialisation stage of %g s\n", spec.initialisation().duration());
       const std::uint64_t steps = run_initialisation(spec, *engine);
       summary.events.push_back({0.0, engine->step_count(), "initialisation",
                                 "stage of " + format_number(spec.initialisation().duration()) + " s in " +
@@ -344,10 +415,10 @@ int run_command(const std::vector<std::string>& args) {
     std::optional<JournalReplay> replay;
     if (!options.replay.empty()) replay.emplace(options.replay, spec.name());
     const CaseRain unsteered;  // the case's rain as it is, without a journal
-    Progress progress(end_time, stderr);
+    Progress progress(end_time, log);
     const auto record = [&](const std::vector<CascadeEvent>& fired) {
       for (const CascadeEvent& e : fired) {
-        std::fprintf(stderr, "\ncascade run: t = %g s, step %llu: %s: %s\n", engine->time(),
+        std::fprintf(log, "\ncascade run: t = %g s, step %llu: %s: %s\n", engine->time(),
                      static_cast<unsigned long long>(engine->step_count()), e.kind.c_str(), e.message.c_str());
         summary.events.push_back({engine->time(), engine->step_count(), e.kind, e.message});
       }
@@ -356,7 +427,7 @@ int run_command(const std::vector<std::string>& args) {
     const auto record_stages = [&]() {
       for (const StageChange& c : engine->take_stage_changes()) {
         const std::string message = (c.from < 0 ? std::string("start: ") : c.from_name + " -> ") + c.to_name + ": " + c.reason;
-        std::fprintf(stderr, "\ncascade run: t = %g s, step %llu: stage_changed: %s\n", c.time,
+        std::fprintf(log, "\ncascade run: t = %g s, step %llu: stage_changed: %s\n", c.time,
                      static_cast<unsigned long long>(c.step), message.c_str());
         summary.events.push_back({c.time, c.step, "stage_changed", message});
         outputs.enter_stage(c.to, c.time);
@@ -368,9 +439,11 @@ int run_command(const std::vector<std::string>& args) {
     std::size_t lost = 0;
     while (engine->time() < end_time * (1 - 1e-12)) {
       size_team();
-      if (g_signal.load() != 0) {
+      // Split over processes, all stop at the same step when any was signalled.
+      const int signal = split ? int(split->maximum(double(g_signal.load()))) : g_signal.load();
+      if (signal != 0) {
         outputs.observe(*engine, true);
-        throw SimulationFailure("interrupted by signal " + std::to_string(g_signal.load()) + " at t = " +
+        throw SimulationFailure("interrupted by signal " + std::to_string(signal) + " at t = " +
                                 std::to_string(engine->time()) + " s; outputs hold the run up to there");
       }
       if (replay) replay->apply(spec, *engine, config.dimensions, summary);
@@ -394,7 +467,8 @@ int run_command(const std::vector<std::string>& args) {
   } catch (const std::exception& e) {
     summary.status = RunSummary::Status::failed;
     summary.error = e.what();
-    std::fprintf(stderr, "\ncascade run: failed: %s\n", e.what());
+    std::fprintf(split && !root ? stderr : log, "\ncascade run: %sfailed: %s\n",
+                 split && !root ? ("process " + std::to_string(split->process()) + ": ").c_str() : "", e.what());
     exit_code = 1;
   }
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -407,9 +481,14 @@ int run_command(const std::vector<std::string>& args) {
       summary.pore_water = {true, account.rain, account.walls, account.surface};
     }
     summary.bytes_per_particle = double(engine->device_bytes()) / double(std::max<std::size_t>(1, particles.size()));
+#if defined(CASCADE_HAVE_MPI)
+    if (const auto* distributed = dynamic_cast<const DistributedEngine*>(engine.get()))
+      for (std::size_t held : distributed->share_sizes()) summary.process_particles.push_back(held);
+#endif
     summary.particle_steps_per_second =
         summary.wall_seconds > 0 ? double(particles.size()) * double(summary.steps) / summary.wall_seconds : 0.0;
   }
+  if (!root) return exit_code;
   try {
     std::filesystem::create_directories(options.out_dir);
     write_run_json(json_path, summary);

@@ -107,6 +107,13 @@ std::string run_summary_json(const RunSummary& s) {
   j += "  \"particle_steps_per_second\": " + json_number(s.particle_steps_per_second) + ",\n";
   j += "  \"bytes_per_particle\": " + json_number(s.bytes_per_particle) + ",\n";
   j += "  \"lost_particles\": " + std::to_string(s.lost_particles) + ",\n";
+  if (s.processes > 1) {
+    j += "  \"processes\": " + std::to_string(s.processes) + ",\n";
+    j += "  \"process_particles\": [";
+    for (std::size_t k = 0; k < s.process_particles.size(); ++k)
+      j += (k ? ", " : "") + std::to_string(s.process_particles[k]);
+    j += "],\n";
+  }
   if (s.pore_water.present)
     j += "  \"pore_water\": {\"rain\": " + json_number(s.pore_water.rain) + ", \"walls\": " +
          json_number(s.pore_water.walls) + ", \"surface\": " + json_number(s.pore_water.surface) + "},\n";

@@ -1,0 +1,80 @@
+#!/usr/bin/env python3
+"""Runs split over processes against one process, on this machine (issue 17).
+
+Strong scaling: the same case as one process with one thread, one process with P threads, and P
+processes (mpirun) with one thread each. Weak scaling: about the same number of particles per
+process, the case at dp for one process and at dp / P^(1/D) for P processes. Prints for each run
+the wall time, the steps, the particle-steps per second, the particles each process held (its
+own, the copies in its halo, the dummies there: run.json's process_particles) and the
+efficiency against one process with one thread, with the machine (CPU model, cores, memory,
+STREAM's triad) and the load average before and after. The figures of one run of this script are
+comparable with each other; figures from another machine or another run are not.
+
+usage: /usr/bin/python3 bench/split_scaling.py [--case cases/dam_break_3d.yaml] [--dp 0.0103]
+           [--until 0.005] [--precision float] [--processes 2]
+"""
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from compare_baseline import ROOT, build_current, machine
+
+
+def run(cascade, case, dp, until, precision, processes, threads, out):
+    command = [str(cascade), "run", str(ROOT / case), "--out", str(out), "--until", str(until),
+               "--precision", precision, "--threads", str(threads), "--set", f"dp={dp}"]
+    if processes > 1:
+        command = [shutil.which("mpirun"), "--oversubscribe", "--allow-run-as-root", "-np", str(processes)] + command
+    start = time.monotonic()
+    result = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    wall = time.monotonic() - start
+    if result.returncode != 0:
+        sys.exit(f"split_scaling: {' '.join(command)} failed:\n{result.stderr}")
+    return wall, json.loads((out / "run.json").read_text())
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--case", default="cases/dam_break_3d.yaml")
+    parser.add_argument("--dp", type=float, default=0.0103)
+    parser.add_argument("--until", type=float, default=0.005)
+    parser.add_argument("--precision", default="float")
+    parser.add_argument("--processes", type=int, default=2)
+    args = parser.parse_args()
+    if shutil.which("mpirun") is None:
+        sys.exit("split_scaling: mpirun is missing (openmpi-bin)")
+
+    cascade = build_current()
+    dimensions = 3 if "3d" in args.case else 2
+    p = args.processes
+    print(f"machine: {machine(1)}")
+    print(f"load average before: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+    print(f"case: {args.case} --until {args.until} --precision {args.precision}")
+    print(f"{'kind':<7} {'dp':>8} {'processes':>9} {'threads':>7} {'wall s':>8} {'steps':>6} {'particles':>10} "
+          f"{'particle-steps/s':>17} {'efficiency':>10}  held per process")
+    runs = [("strong", args.dp, 1, 1), ("strong", args.dp, 1, p), ("strong", args.dp, p, 1),
+            ("weak", args.dp * p ** (1 / dimensions), 1, 1), ("weak", args.dp, p, 1)]
+    with tempfile.TemporaryDirectory(prefix="split_scaling.") as scratch:
+        reference = {}
+        for k, (kind, dp, processes, threads) in enumerate(runs):
+            wall, summary = run(cascade, args.case, dp, args.until, args.precision, processes, threads,
+                                Path(scratch) / str(k))
+            rate = summary["particles"]["total"] * summary["steps"] / wall
+            workers = processes * threads
+            if workers == 1:
+                reference[kind] = rate
+            efficiency = rate / (workers * reference[kind])
+            held = summary.get("process_particles", [summary["particles"]["total"]])
+            print(f"{kind:<7} {dp:8.5f} {processes:9d} {threads:7d} {wall:8.1f} {summary['steps']:6d} "
+                  f"{summary['particles']['total']:10d} {rate:17.3g} {efficiency:10.2f}  {held}", flush=True)
+    print(f"load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+
+
+if __name__ == "__main__":
+    main()

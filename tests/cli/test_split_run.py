@@ -1,0 +1,132 @@
+"""`mpirun -np N cascade run` (issue 17): a run split over processes writes what one process writes.
+
+Real processes: `cascade run` alone and under mpirun at 2 and 3 processes (one thread each, more
+processes than cores with --oversubscribe), their fields.h5, probes.csv and run.json read back.
+Registered only in builds with CASCADE_MPI (tests/CMakeLists.txt).
+
+Tolerances: each process lists a particle's neighbours in the order of its own share, so sums are
+taken in another order and the runs agree to round-off, not to the bit: positions within 1e-9 dp,
+every other field within 1e-7 of its range over the frame (tests/parallel/test_split_run.cpp
+shows the same bounds fail for a halo one list radius wide).
+"""
+
+import json
+import math
+import shutil
+import subprocess
+import unittest
+
+import clitest
+
+DP = 0.00365  # cases/dam_break_2d.yaml
+
+
+def mpirun(processes, *args, timeout=300):
+    launcher = shutil.which("mpirun")
+    if launcher is None:
+        raise AssertionError("mpirun is missing: install openmpi-bin (scripts/install-deps.sh)")
+    return subprocess.run([launcher, "--oversubscribe", "--allow-run-as-root", "-np", str(processes),
+                           str(clitest.CASCADE), *map(str, args)],
+                          capture_output=True, text=True, timeout=timeout, cwd=clitest.WORK_DIR)
+
+
+def datasets(h5, group=None, prefix=""):
+    """Every dataset of an HDF5 file by its path."""
+    h5py = clitest.import_h5py()
+    found = {}
+    for name, item in (group if group is not None else h5).items():
+        if isinstance(item, h5py.Dataset):
+            found[prefix + name] = item[()]
+        else:
+            found.update(datasets(h5, item, prefix + name + "/"))
+    return found
+
+
+class SplitRun(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.alone = clitest.out_dir("alone")
+        result = clitest.run("run", clitest.case("dam_break_2d"), "--out", cls.alone, "--until", "0.05",
+                             "--threads", "1", timeout=300)
+        assert result.returncode == 0, result.stderr
+
+    def compare_with_one_process(self, processes):
+        import numpy as np
+        h5py = clitest.import_h5py()
+        split = clitest.out_dir(f"split_{processes}")
+        result = mpirun(processes, "run", clitest.case("dam_break_2d"), "--out", split, "--until", "0.05",
+                        "--threads", "1")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn(f"split over {processes} processes", result.stderr)
+
+        summary = json.loads((split / "run.json").read_text())
+        alone_summary = json.loads((self.alone / "run.json").read_text())
+        self.assertEqual(summary["status"], "completed")
+        self.assertEqual(summary["processes"], processes)
+        self.assertEqual(len(summary["process_particles"]), processes)
+        self.assertTrue(all(0 < held <= summary["particles"]["total"] for held in summary["process_particles"]))
+        self.assertEqual(summary["steps"], alone_summary["steps"])
+        self.assertEqual(summary["lost_particles"], 0)
+        self.assertEqual(summary["particles"], alone_summary["particles"])
+
+        with h5py.File(self.alone / "fields.h5", "r") as a, h5py.File(split / "fields.h5", "r") as b:
+            one, many = datasets(a), datasets(b)
+        self.assertGreaterEqual(len(one), 20)
+        compared = 0
+        for path, values in one.items():
+            self.assertIn(path, many, f"{path} is missing from the split run's fields.h5")
+            other = many[path]
+            self.assertEqual(np.shape(values), np.shape(other), path)
+            if not np.issubdtype(np.asarray(values).dtype, np.floating):
+                self.assertTrue(np.array_equal(values, other), f"{path} differs")
+            elif path.endswith("position"):
+                self.assertLess(np.max(np.abs(other - values)) / DP, 1e-9, path)
+            else:
+                values = np.asarray(values, dtype=float)
+                span = np.ptp(values) if values.size else 0.0
+                self.assertLessEqual(np.max(np.abs(other - values), initial=0.0), 1e-7 * span, path)
+            compared += 1
+        self.assertEqual(compared, len(one))
+        owners = [v for p, v in many.items() if p.endswith("/process")]
+        self.assertEqual(len(owners), len([p for p in one if p.endswith("/pressure")]))
+        for owner in owners:  # every process owns some particles, and only these processes
+            self.assertEqual(sorted(set(np.asarray(owner).astype(int).tolist())), list(range(processes)))
+
+        header, rows = clitest.read_probes(split / "probes.csv")
+        alone_header, alone_rows = clitest.read_probes(self.alone / "probes.csv")
+        self.assertEqual(header, alone_header)
+        self.assertEqual(len(rows), len(alone_rows))
+        self.assertGreater(len(rows), 2)
+        for row, alone_row in zip(rows, alone_rows):
+            for value, alone_value in zip(row, alone_row):
+                if math.isnan(alone_value):  # a probe with no particle to read
+                    self.assertTrue(math.isnan(value))
+                else:
+                    self.assertAlmostEqual(value, alone_value, delta=1e-9 * max(1.0, abs(alone_value)))
+        print(f"{processes} processes: {compared} datasets and {len(rows)} probe rows as in one process")
+
+    def test_two_processes_write_what_one_writes(self):
+        self.compare_with_one_process(2)
+
+    def test_three_processes_write_what_one_writes(self):
+        self.compare_with_one_process(3)
+
+    def test_a_case_with_stages_is_refused_before_it_starts(self):
+        result = mpirun(2, "run", clitest.case("liakopoulos"), "--out", clitest.out_dir("staged"), "--until", "1",
+                        timeout=120)
+        self.assertNotEqual(result.returncode, 0)
+        self.assertIn("cannot be split over processes yet", result.stderr)
+
+    def test_a_failing_split_run_says_why_in_run_json(self):
+        out = clitest.out_dir("failing")
+        result = mpirun(3, "run", clitest.case("dam_break_2d"), "--out", out, "--until", "0.05", "--threads", "1",
+                        "--set", "numerics.min_dt=0.001", timeout=120)
+        self.assertNotEqual(result.returncode, 0)
+        summary = json.loads((out / "run.json").read_text())
+        self.assertEqual(summary["status"], "failed")
+        self.assertIn("fell below min_dt", summary["error"])
+        self.assertEqual(summary["processes"], 3)
+
+
+if __name__ == "__main__":
+    clitest.main()
