@@ -77,6 +77,17 @@ struct OwnedStepLimit {
   }
 };
 
+// Runs `pass` on the particles this process owns only (Simulation::launch_owned).
+template <typename F>
+struct OwnedOnly {
+  F pass;
+  const std::uint32_t* owner;
+  std::uint32_t process;
+  CASCADE_HD void operator()(std::uint32_t i) const {
+    if (owner[i] == process) pass(i);
+  }
+};
+
 // A copy of another process's particle.
 struct OwnedElsewhere {
   std::uint32_t process;

@@ -1,8 +1,8 @@
 // A run split over several processes (issue 17): each process owns the moving particles of one
 // slab of the domain along one axis and holds copies of the others' particles within a halo
-// around its slab, refreshed from their owners before every rate evaluation. The engine sees the
-// other processes only through Transport (server/parallel/ implements it with MPI), so that no
-// physics header and no part of the engine depends on MPI.
+// around its slab, refreshed from their owners at the half step and the end of every step. The
+// engine sees the other processes only through Transport (server/parallel/ implements it with
+// MPI), so that no physics header and no part of the engine depends on MPI.
 #pragma once
 
 #include <cmath>

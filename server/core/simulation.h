@@ -131,9 +131,11 @@ class Simulation final : public Engine {
     return copy;
   }
 
+  // Split over processes, the copies of other processes' particles take their owners' values at
+  // the half step and at the end of the step (refresh_halo), so that every evaluation and every
+  // frame between steps reads the whole run's state.
   void step() override {
     update_lists();
-    refresh_halo();
     evaluate_rates(false);
     dt_ = next_time_step();
     save_step_start();
@@ -147,6 +149,7 @@ class Simulation final : public Engine {
     launch(SymplecticCorrector<Real, Dim>{view(), start_view(), grid_, Real(dt_)}, 0, moving_);
     if (active_ > moving_) launch(WallContact<Real, Dim>{view(), grid_, neighbours_.view()}, 0, moving_);
     update_soil_stress(dt_);
+    refresh_halo();
     time_ += dt_;
     ++steps_;
   }
@@ -503,6 +506,15 @@ class Simulation final : public Engine {
                      thrust::counting_iterator<std::uint32_t>(std::uint32_t(end)), f);
   }
   static constexpr int kLaunchBlock = 256;
+
+  // A pass whose results only the particles this process owns need: the interactions, which no
+  // other pass reads of a neighbour. A copy's rates would be replaced by its owner's at the next
+  // refresh_halo, so in a share of a split run the copies skip it.
+  template <typename F>
+  void launch_owned(const F& f, std::size_t begin, std::size_t end) const {
+    if (transport_) launch(OwnedOnly<F>{f, raw(owner_), process()}, begin, end);
+    else launch(f, begin, end);
+  }
   static constexpr std::size_t kDynamicLaunchFrom = 64 * kLaunchBlock;
 
   ParticleView<Real, Dim> view() {
@@ -606,13 +618,13 @@ class Simulation final : public Engine {
     density_gradients();
     const std::uint32_t water = grid_.water_end;
     if (has_soil_ && !relaxing()) seepage_discharge();
-    launch(WaterInteraction<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_,
-                                       has_soil_ ? raw(saturation_) : nullptr},
-           0, water);
+    launch_owned(WaterInteraction<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_,
+                                             has_soil_ ? raw(saturation_) : nullptr},
+                 0, water);
     if (!has_soil_) return;
-    launch(SoilInteraction<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_, surface_forcing(),
-                                      water_.rho0, relaxing()},
-           water, moving_);
+    launch_owned(SoilInteraction<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_, surface_forcing(),
+                                            water_.rho0, relaxing()},
+                 water, moving_);
     // While relaxing the free water is damped too: its sloshing would load the soil it rests on.
     launch(LocalDamping<Real, Dim>{view(), raw(unbalanced_acceleration_), Real(local_damping_)},
            relaxing() ? 0u : water, moving_);
@@ -809,8 +821,9 @@ class Simulation final : public Engine {
 
   // A run split over processes (partition.h). Each process steps its share: the particles it
   // owns, copies of the other processes' particles within its halo, and the dummies there. The
-  // copies take their owners' values before every rate evaluation (refresh_halo), so that each
-  // owned particle's rates are those of the whole run; the copies' own results are discarded.
+  // copies take their owners' values at the half step and at the end of every step (refresh_halo),
+  // so that each owned particle's rates are those of the whole run; the copies' own interactions
+  // are not computed (launch_owned) and what they integrate is replaced.
   // The halo covers what an evaluation reads around an owned particle (DistributedEngine).
   std::uint32_t process() const { return std::uint32_t(transport_->process()); }
 
@@ -964,8 +977,8 @@ class Simulation final : public Engine {
     }
   }
 
-  // Before each rate evaluation: every copy takes its owner's values of every array (the owners
-  // have reached the same point of the same step).
+  // At the half step and at the end of a step: every copy takes its owner's values of every array
+  // (the owners have reached the same point of the same step).
   void refresh_halo() {
     if (!transport_) return;
     const int processes = transport_->processes();
