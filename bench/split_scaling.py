@@ -5,9 +5,10 @@ Strong scaling: the same case as one process with one thread, one process with P
 processes (mpirun) with one thread each. Weak scaling: about the same number of particles per
 process, the case at dp for one process and at dp / P^(1/D) for P processes. Prints for each run
 the wall time, the steps, the particle-steps per second, the particles each process held (its
-own, the copies in its halo, the dummies there: run.json's process_particles) and the
-efficiency against one process with one thread, with the machine (CPU model, cores, memory,
-STREAM's triad) and the load average before and after. The figures of one run of this script are
+own, the copies in its halo, the dummies there: run.json's process_particles), the efficiency
+against one process with one thread and, for a split run, the slowest process's wall time in the
+steps' exchanges and the bytes all processes sent per step (run.json's exchange), with the
+machine (CPU model, cores, memory, STREAM's triad) and the load average before and after. The figures of one run of this script are
 comparable with each other; figures from another machine or another run are not.
 
 usage: /usr/bin/python3 bench/split_scaling.py [--case cases/dam_break_3d.yaml] [--dp 0.0103]
@@ -57,7 +58,7 @@ def main():
     print(f"load average before: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     print(f"case: {args.case} --until {args.until} --precision {args.precision}")
     print(f"{'kind':<7} {'dp':>8} {'processes':>9} {'threads':>7} {'wall s':>8} {'steps':>6} {'particles':>10} "
-          f"{'particle-steps/s':>17} {'efficiency':>10}  held per process")
+          f"{'particle-steps/s':>17} {'efficiency':>10} {'exchange s':>10} {'MB/step':>8}  held per process")
     runs = [("strong", args.dp, 1, 1), ("strong", args.dp, 1, p), ("strong", args.dp, p, 1),
             ("weak", args.dp * p ** (1 / dimensions), 1, 1), ("weak", args.dp, p, 1)]
     with tempfile.TemporaryDirectory(prefix="split_scaling.") as scratch:
@@ -71,8 +72,11 @@ def main():
                 reference[kind] = rate
             efficiency = rate / (workers * reference[kind])
             held = summary.get("process_particles", [summary["particles"]["total"]])
+            exchange = summary.get("exchange", {"seconds": 0.0, "bytes": 0})
+            megabytes = exchange["bytes"] / max(1, summary["steps"]) / 1e6
             print(f"{kind:<7} {dp:8.5f} {processes:9d} {threads:7d} {wall:8.1f} {summary['steps']:6d} "
-                  f"{summary['particles']['total']:10d} {rate:17.3g} {efficiency:10.2f}  {held}", flush=True)
+                  f"{summary['particles']['total']:10d} {rate:17.3g} {efficiency:10.2f} {exchange['seconds']:10.1f} "
+                  f"{megabytes:8.2f}  {held}", flush=True)
     print(f"load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
 
 

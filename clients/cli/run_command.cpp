@@ -19,6 +19,7 @@
 #include "server/core/engine.h"
 #include "server/core/free_cores.h"
 #include "server/core/partition.h"
+#include "server/parallel/measured_transport.h"
 #include "server/io/hdf5_writer.h"
 #include "server/io/journal.h"
 #include "server/io/probe_csv_writer.h"
@@ -320,11 +321,13 @@ int run_command(const std::vector<std::string>& args) {
 #if defined(CASCADE_HAVE_MPI)
   std::unique_ptr<MpiSession> mpi;
   std::unique_ptr<MpiTransport> transport;
+  std::unique_ptr<MeasuredTransport> meter;  // the steps' exchanges, for run.json
   if (processes > 1) {
     mpi = std::make_unique<MpiSession>(nullptr, nullptr);
     transport = std::make_unique<MpiTransport>();
+    meter = std::make_unique<MeasuredTransport>(*transport);
   }
-  Transport* const split = transport.get();
+  Transport* const split = meter.get();
 #else
   if (processes > 1) {
     std::fprintf(stderr, "cascade run: launched as %d processes, but this build has no MPI (configure with -DCASCADE_MPI=ON)\n",
@@ -332,6 +335,7 @@ int run_command(const std::vector<std::string>& args) {
     return 2;
   }
   Transport* const split = nullptr;
+  MeasuredTransport* const meter = nullptr;
 #endif
   const bool root = !split || split->process() == 0;
   if (split && (spec.stages_size() > 0 || spec.has_initialisation())) {
@@ -449,7 +453,13 @@ int run_command(const std::vector<std::string>& args) {
       if (replay) replay->apply(spec, *engine, config.dimensions, summary);
       record_stages();  // a replayed hand-over
       apply_case_rain(spec, replay ? replay->rain() : unsteered, *engine, summary);
+      const double exchange_seconds = meter ? meter->seconds() : 0.0;
+      const std::uint64_t exchange_bytes = meter ? meter->bytes_sent() : 0;
       engine->step();
+      if (meter) {
+        summary.exchange_seconds += meter->seconds() - exchange_seconds;
+        summary.exchange_bytes += meter->bytes_sent() - exchange_bytes;
+      }
       record_stages();
       record(outputs.observe(*engine, false));
       progress.update(engine->time(), engine->step_count(), engine->last_dt());
@@ -485,6 +495,10 @@ int run_command(const std::vector<std::string>& args) {
     if (const auto* distributed = dynamic_cast<const DistributedEngine*>(engine.get()))
       for (std::size_t held : distributed->share_sizes()) summary.process_particles.push_back(held);
 #endif
+    if (split) {  // the slowest process's time in the steps' exchanges, and every process's bytes
+      summary.exchange_seconds = split->maximum(summary.exchange_seconds);
+      summary.exchange_bytes = std::uint64_t(split->sum(double(summary.exchange_bytes)));
+    }
     summary.particle_steps_per_second =
         summary.wall_seconds > 0 ? double(particles.size()) * double(summary.steps) / summary.wall_seconds : 0.0;
   }

@@ -113,6 +113,8 @@ std::string run_summary_json(const RunSummary& s) {
     for (std::size_t k = 0; k < s.process_particles.size(); ++k)
       j += (k ? ", " : "") + std::to_string(s.process_particles[k]);
     j += "],\n";
+    j += "  \"exchange\": {\"seconds\": " + json_number(s.exchange_seconds) +
+         ", \"bytes\": " + std::to_string(s.exchange_bytes) + "},\n";
   }
   if (s.pore_water.present)
     j += "  \"pore_water\": {\"rain\": " + json_number(s.pore_water.rain) + ", \"walls\": " +

@@ -33,7 +33,9 @@ struct RunSummary {
   double particle_steps_per_second = 0.0;  // particles × steps / wall_seconds
   double bytes_per_particle = 0.0;         // device memory of the particle arrays / total
   int processes = 1;                       // a run split over processes (mpirun): how many,
-  std::vector<std::uint64_t> process_particles;  // and the particles each held at the end
+  std::vector<std::uint64_t> process_particles;  // and the particles each held at the end,
+  double exchange_seconds = 0;    // the wall time of the steps' exchanges (the slowest process's),
+  std::uint64_t exchange_bytes = 0;  // and the bytes all processes sent in them
   std::uint64_t lost_particles = 0;        // particles that left the domain
   // The pore water that entered the soil through each boundary (Engine::pore_water_account; m³,
   // m² per metre of depth in 2D), written only for a case with soil.

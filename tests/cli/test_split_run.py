@@ -65,6 +65,8 @@ class SplitRun(unittest.TestCase):
         self.assertEqual(summary["processes"], processes)
         self.assertEqual(len(summary["process_particles"]), processes)
         self.assertTrue(all(0 < held <= summary["particles"]["total"] for held in summary["process_particles"]))
+        self.assertGreater(summary["exchange"]["bytes"], 0)  # the copies' refreshes
+        self.assertLess(summary["exchange"]["seconds"], summary["wall_seconds"])
         self.assertEqual(summary["steps"], alone_summary["steps"])
         self.assertEqual(summary["lost_particles"], 0)
         self.assertEqual(summary["particles"], alone_summary["particles"])
