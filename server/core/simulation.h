@@ -258,7 +258,7 @@ class Simulation final : public Engine {
     add(dummy_pore_pressure_), add(dummy_stress_), add(dummy_velocity_), add(wall_), add(wall_pore_pressure_);
     add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
     add(unbalanced_acceleration_), add(pore_water_inflow_), add(pore_water_blocks_), add(pore_water_totals_);
-    add(owner_);
+    add(owner_), add(near_);
     return bytes + cells_.bytes() + neighbours_.bytes();
   }
 
@@ -515,6 +515,15 @@ class Simulation final : public Engine {
     if (transport_) launch(OwnedOnly<F>{f, raw(owner_), process()}, begin, end);
     else launch(f, begin, end);
   }
+
+  // The renormalised gradients (and the pressures they come with), which this process's
+  // interactions read within one list radius: in a share of a split run the copies farther from
+  // the slab skip them and keep their owners' values of the last refresh (map_halo's near_).
+  template <typename F>
+  void launch_near(const F& f, std::size_t begin, std::size_t end) const {
+    if (transport_) launch(NearOnly<F>{f, raw(near_)}, begin, end);
+    else launch(f, begin, end);
+  }
   static constexpr std::size_t kDynamicLaunchFrom = 64 * kLaunchBlock;
 
   ParticleView<Real, Dim> view() {
@@ -653,15 +662,15 @@ class Simulation final : public Engine {
   // (Eq. 25), each over its own particles.
   void density_gradients() {
     const std::uint32_t water = grid_.water_end;
-    launch(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, water);
+    launch_near(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, water);
     if (has_soil_ && !relaxing()) pore_water_gradients();
   }
 
   // The soil's renormalised gradients of the pore-water density and pressure (Eq. 25).
   void pore_water_gradients() {
-    launch(RenormalisedDensityGradient<Real, Dim, true>{view(), grid_, neighbours_.view(), sph_, water_, soil_view(),
-                                                        water_.rho0},
-           grid_.water_end, moving_);
+    launch_near(RenormalisedDensityGradient<Real, Dim, true>{view(), grid_, neighbours_.view(), sph_, water_,
+                                                             soil_view(), water_.rho0},
+                grid_.water_end, moving_);
   }
 
   SoilView<Real, Dim> soil_view() {
@@ -975,6 +984,28 @@ class Simulation final : public Engine {
       halo_send_[r] = Vector<std::uint32_t>(send[r].begin(), send[r].end());
       halo_receive_[r] = Vector<std::uint32_t>(receive[r].begin(), receive[r].end());
     }
+    mark_near_particles(position, owner);
+  }
+
+  // What this process's own particles read, through one evaluation, of its copies and dummies
+  // (the halo's reasoning, DistributedEngine): the gradients of the particles within one list
+  // radius of the slab, and the values of the dummies within two, which those gradients read;
+  // both widened by the skin, by which particles move between rebuilds. The copies farther out
+  // skip the gradient passes (launch_near); the dummies farther out rest as unlisted ones do
+  // (SolidBoundaryWater, SolidBoundarySoil), and a frame computes them if it shows them.
+  void mark_near_particles(const thrust::host_vector<V>& position, const thrust::host_vector<std::uint32_t>& owner) {
+    const std::uint32_t me = process();
+    const double list_radius = 2.0 * kListRadius * config_.h, skin = 2.0 * (kListRadius - 1.0) * config_.h;
+    std::vector<std::uint8_t> near(std::max<std::size_t>(moving_, 1), 0);
+    for (std::uint32_t k = 0; k < moving_; ++k)
+      near[k] = owner[k] == me || slabs_.distance_to(int(me), double(position[k][slabs_.axis])) <= list_radius + skin;
+    near_ = near;
+    const thrust::host_vector<V> dummy_position(position_.begin() + moving_, position_.begin() + active_);
+    thrust::host_vector<std::uint8_t> flags(dummy_flags_.begin() + moving_, dummy_flags_.begin() + active_);
+    for (std::size_t k = 0; k < flags.size(); ++k)
+      if (slabs_.distance_to(int(me), double(dummy_position[k][slabs_.axis])) > 2.0 * list_radius + skin)
+        flags[k] &= std::uint8_t(~kListed);
+    thrust::copy(flags.begin(), flags.end(), dummy_flags_.begin() + moving_);
   }
 
   // At the half step and at the end of a step: every copy takes its owner's values of every array
@@ -1050,6 +1081,7 @@ class Simulation final : public Engine {
   Transport* transport_ = nullptr;  // a run split over processes (partition.h); null for one process
   Slabs slabs_;
   Vector<std::uint32_t> owner_;     // with a transport: per particle, the process that owns it
+  Vector<std::uint8_t> near_;       // with a transport: per moving particle, 1 where its gradients are read
   std::vector<Vector<std::uint32_t>> halo_send_, halo_receive_;  // per process: rows (map_halo)
 };
 
