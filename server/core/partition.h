@@ -10,6 +10,8 @@
 #include <limits>
 #include <vector>
 
+#include "server/core/engine_state.h"
+
 namespace cascade {
 
 // Message passing between the processes of one run. Every call is collective: all processes make
@@ -59,6 +61,9 @@ struct PartitionSetup {
   std::vector<std::uint32_t> owner;
   bool soil = false;                     // the run has soil particles (some process may hold none)
   std::vector<double> initial_position;  // whole run, by id: N × 3 (empty without soil)
+  // A share that starts from a checkpoint (DistributedEngine::restore): the checkpoint's rows of
+  // the particles above, in the same order, with this process's part of the pore-water account.
+  const EngineState* start = nullptr;
 };
 
 }  // namespace cascade

@@ -29,6 +29,7 @@
 #include "server/core/neighbour_list.h"
 #include "server/core/particle_rows.h"
 #include "server/core/particle_view.h"
+#include "server/core/engine_state_rows.h"
 #include "server/core/partition.h"
 #include "server/physics/free_surface.h"
 #include "server/physics/local_damping.h"
@@ -97,6 +98,8 @@ class Simulation final : public Engine {
     scratch_phase_.resize(n);
     scratch_index_.resize(n);
     set_up_soil(host, partition);
+    const EngineState* start = partition ? partition->start : nullptr;
+    if (start) take_state(*start);
 
     sph_.h = Real(config.h);
     // The kernel gradient normalised on the lattice the builder places the particles on
@@ -113,9 +116,11 @@ class Simulation final : public Engine {
                                   Real(config.viscosity_alpha)};
     // Pressures of the initial state (Eq. 6, the pore-water state and the boundary
     // extrapolation), so that frame 0 has them. A share of a split run first settles which copies
-    // each process holds by the engine's own rule (share_particles), in its own precision.
+    // each process holds by the engine's own rule (share_particles), in its own precision. A
+    // share that starts from a checkpoint keeps the checkpoint's values, as restore() does.
     if (transport_) share_particles();
     sort_by_cell();
+    if (start) return;
     boundary_values(false);
     density_gradients();
   }
@@ -214,8 +219,9 @@ class Simulation final : public Engine {
     initial_position_ = now.position;
   }
 
+  // Split over processes: the rows of the particles this process owns (DistributedEngine puts
+  // the processes' rows together).
   EngineState state() const override {
-    refuse_when_partitioned("a checkpoint");
     EngineState s;
     s.dimensions = Dim;
     s.single_precision = std::is_same_v<Real, float>;
@@ -225,11 +231,23 @@ class Simulation final : public Engine {
     s.displacement_reference = initial_position_;
     s.pore_water = pore_water_account();
     for_each_carried_array(*this, [&s](const char* name, const auto& array) { export_array(array, name, s); });
-    return s;
+    if (!transport_) return s;
+    const thrust::host_vector<std::uint32_t> owner(owner_.begin(), owner_.end());
+    std::vector<std::size_t> owned;
+    for (std::size_t k = 0; k < owner.size(); ++k)
+      if (owner[k] == process()) owned.push_back(k);
+    return state_rows(s, owned);
   }
 
   void restore(const EngineState& s) override {
-    refuse_when_partitioned("a restore");
+    refuse_when_partitioned("a restore");  // DistributedEngine::restore builds the shares anew instead
+    take_state(s);
+    list_at_listed_positions();
+  }
+
+  // The carried arrays and counters of `s`, whose particles are this engine's (a restore, or a
+  // share of a split run that starts from its rows of a checkpoint).
+  void take_state(const EngineState& s) {
     if (s.dimensions != Dim || s.single_precision != std::is_same_v<Real, float> || s.particles != phase_.size())
       throw std::invalid_argument("the state is of a " + std::to_string(s.dimensions) + "D engine in " +
                                   (s.single_precision ? "float" : "double") + " with " + std::to_string(s.particles) +
@@ -241,7 +259,6 @@ class Simulation final : public Engine {
     forcing_ = s.forcing;
     if (has_soil_) initial_position_ = s.displacement_reference;
     pore_water_totals_ = std::vector<double>{s.pore_water.rain, s.pore_water.walls, s.pore_water.surface};
-    list_at_listed_positions();
   }
 
   std::size_t device_bytes() const override {
@@ -579,11 +596,13 @@ class Simulation final : public Engine {
   // The neighbour lists of the coming steps are those built at the listed positions, in the
   // order the arrays are in (sorted by those positions' cells): sorting again there keeps that
   // order (the sort is stable) and lists the same neighbours; the particles then go back to
-  // where they are now. For a restored state and a clone.
+  // where they are now. For a restored state and a clone. A state in another order (a split
+  // run's, in id order: DistributedEngine::state) is sorted here, its positions with it.
   void list_at_listed_positions() {
-    const Vector<V> now = position_;
+    Vector<V> now = position_;
     position_ = listed_position_;
     sort_by_cell();
+    cells_.reorder(now, start_position_);
     position_ = now;
   }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "server/core/engine_state_rows.h"
 #include "server/core/neighbour_list.h"
 
 namespace cascade {
@@ -25,6 +26,68 @@ void take(const std::vector<char>& in, std::size_t& offset, T* values, std::size
   if (offset + count * sizeof(T) > in.size()) throw std::logic_error("a process's frame message is short");
   if (count) std::memcpy(values, in.data() + offset, count * sizeof(T));
   offset += count * sizeof(T);
+}
+
+// A process's rows of a state: their count, then every array (in the state's order of names)
+// as its components per particle and its values.
+std::vector<char> pack_state_rows(const EngineState& rows) {
+  std::vector<char> out;
+  const std::uint64_t count = rows.particles;
+  put(out, &count, 1);
+  auto pack = [&](const auto& arrays) {
+    for (const auto& [name, values] : arrays) {
+      const std::uint32_t c = std::uint32_t(components_of(values, rows.particles, name));
+      put(out, &c, 1);
+      put(out, values.data(), values.size());
+    }
+  };
+  pack(rows.reals);
+  pack(rows.integers);
+  return out;
+}
+
+// A process's rows (pack_state_rows), whose arrays have the names of `like`'s.
+EngineState unpack_state_rows(const std::vector<char>& in, const EngineState& like) {
+  EngineState rows;
+  std::size_t offset = 0;
+  std::uint64_t count = 0;
+  take(in, offset, &count, 1);
+  rows.particles = std::size_t(count);
+  auto unpack = [&](const auto& names, auto& arrays) {
+    for (const auto& named : names) {
+      std::uint32_t c = 0;
+      take(in, offset, &c, 1);
+      auto& values = arrays[named.first];
+      values.resize(std::size_t(count) * c);
+      take(in, offset, values.data(), values.size());
+    }
+  };
+  unpack(like.reals, rows.reals);
+  unpack(like.integers, rows.integers);
+  if (offset != in.size()) throw std::logic_error("a process's rows of the state are longer than its arrays");
+  return rows;
+}
+
+// Puts `rows` into `whole` (sized for all particles) at their ids.
+void place_state_rows(const EngineState& rows, EngineState& whole, std::vector<char>& seen) {
+  if (rows.particles == 0) return;
+  const std::vector<std::uint32_t>& ids = rows.integers.at("id");
+  for (std::uint32_t id : ids) {
+    if (id >= whole.particles || seen[id]) throw std::logic_error("particle " + std::to_string(id) + " is owned twice or unknown");
+    seen[id] = 1;
+  }
+  auto place = [&](const auto& arrays_in, auto& arrays_out) {
+    for (const auto& [name, values] : arrays_in) {
+      const std::size_t c = components_of(values, rows.particles, name);
+      auto& out = arrays_out[name];
+      if (out.empty()) out.assign(whole.particles * c, 0);
+      if (out.size() != whole.particles * c) throw std::logic_error("the processes' states differ in array " + name);
+      for (std::size_t k = 0; k < rows.particles; ++k)
+        std::copy(values.begin() + k * c, values.begin() + (k + 1) * c, out.begin() + std::size_t(ids[k]) * c);
+    }
+  };
+  place(rows.reals, whole.reals);
+  place(rows.integers, whole.integers);
 }
 
 }  // namespace
@@ -80,17 +143,25 @@ Slabs slabs_for(const EngineConfig& config, const HostParticles& whole, int proc
 }
 
 DistributedEngine::DistributedEngine(const EngineConfig& config, const HostParticles& whole, Transport& transport)
-    : transport_(transport), slabs_(slabs_for(config, whole, transport.processes())), particles_(whole.size()) {
+    : config_(config),
+      transport_(transport),
+      slabs_(slabs_for(config, whole, transport.processes())),
+      particles_(whole.size()),
+      share_(start_share(whole, nullptr)) {}
+
+// This process's share to start from: the moving particles it owns and the dummies within its
+// halo (the engine sends the copies itself, Simulation::share_particles), with their rows of
+// `checkpoint` (whole run, by id) where the share starts from one.
+std::unique_ptr<Engine> DistributedEngine::start_share(const HostParticles& whole, const EngineState* checkpoint) {
   const int dim = whole.dimensions;
-  const int me = transport.process();
+  const int me = transport_.process();
   PartitionSetup setup;
-  setup.transport = &transport;
+  setup.transport = &transport_;
   setup.slabs = slabs_;
   setup.soil = whole.count(Phase::soil) > 0;
-  // This process's share to start from: the moving particles it owns and the dummies within its
-  // halo. The engine sends the copies itself (Simulation::share_particles).
   HostParticles share;
   share.dimensions = dim;
+  std::vector<std::size_t> rows;
   for (std::size_t i = 0; i < whole.size(); ++i) {
     const double x = whole.position[i * dim + slabs_.axis];
     const int owner = slabs_.owner_of(x);
@@ -111,6 +182,7 @@ DistributedEngine::DistributedEngine(const EngineConfig& config, const HostParti
     if (i < whole.body.size()) share.body.push_back(whole.body[i]);
     setup.global_id.push_back(std::uint32_t(i));
     setup.owner.push_back(std::uint32_t(owner));
+    rows.push_back(i);
   }
   if (setup.soil) {
     const int axis3[3] = {0, dim == 2 ? -1 : 1, dim == 2 ? 1 : 2};
@@ -119,7 +191,15 @@ DistributedEngine::DistributedEngine(const EngineConfig& config, const HostParti
       for (int c = 0; c < 3; ++c)
         setup.initial_position[3 * i + c] = axis3[c] < 0 ? 0.0 : whole.position[i * dim + axis3[c]];
   }
-  share_ = make_share_engine(config, share, setup);
+  EngineState start;
+  if (checkpoint) {
+    start = state_rows(*checkpoint, rows);
+    // The account is the whole run's: process 0 carries it on, the others from zero.
+    if (me != 0) start.pore_water = {};
+    setup.initial_position = checkpoint->displacement_reference;
+    setup.start = &start;
+  }
+  return make_share_engine(config_, share, setup);
 }
 
 void DistributedEngine::refuse(const char* what) {
@@ -219,6 +299,60 @@ FieldFrame DistributedEngine::frame() const {
     throw std::logic_error("the processes own " + std::to_string(placed) + " of the run's " + std::to_string(n) +
                            " particles");
   return whole;
+}
+
+// Every process sends every other the rows of the particles it owns (its share's state), and
+// each puts them together by id.
+EngineState DistributedEngine::state() const {
+  const EngineState own = share_->state();
+  const auto received = transport_.exchange(std::vector<std::vector<char>>(transport_.processes(), pack_state_rows(own)));
+  EngineState whole = own;
+  whole.particles = particles_;
+  for (auto& [name, values] : whole.reals) values.clear();
+  for (auto& [name, values] : whole.integers) values.clear();
+  std::vector<char> seen(particles_, 0);
+  for (const auto& in : received) place_state_rows(unpack_state_rows(in, own), whole, seen);
+  if (std::count(seen.begin(), seen.end(), 1) != std::ptrdiff_t(particles_))
+    throw std::logic_error("the processes own fewer particles than the run's " + std::to_string(particles_));
+  whole.pore_water = pore_water_account();
+  return whole;
+}
+
+void DistributedEngine::restore(const EngineState& state) {
+  if (state.particles != particles_ || state.dimensions != config_.dimensions)
+    throw std::invalid_argument("the state is of a " + std::to_string(state.dimensions) + "D run with " +
+                                std::to_string(state.particles) + " particles; this one is " +
+                                std::to_string(config_.dimensions) + "D with " + std::to_string(particles_));
+  const EngineState by_id = state_by_id(state);
+  const int dim = config_.dimensions;
+  auto reals = [&](const char* name, std::size_t components) -> const std::vector<double>& {
+    const auto found = by_id.reals.find(name);
+    if (found == by_id.reals.end() || found->second.size() != particles_ * components)
+      throw std::invalid_argument(std::string("the state's array '") + name + "' is missing or has the wrong size");
+    return found->second;
+  };
+  const auto phase = by_id.integers.find("phase");
+  if (phase == by_id.integers.end() || phase->second.size() != particles_)
+    throw std::invalid_argument("the state's array 'phase' is missing or has the wrong size");
+  // The whole run as the shares are cut from it: positions, phases and ghosts decide the slabs
+  // and what each process holds; the rest of the share's start is the state's rows.
+  HostParticles whole;
+  whole.dimensions = dim;
+  whole.position = reals("position", dim);
+  whole.velocity = reals("velocity", dim);
+  whole.ghost = reals("ghost", dim);
+  whole.water_density = reals("water_density", 1);
+  for (std::uint32_t p : phase->second) whole.phase.push_back(Phase(p));
+  if (whole.count(Phase::soil) > 0) {
+    whole.porosity = reals("porosity", 1);
+    whole.effective_stress = reals("effective_stress", 6);
+    const auto material = by_id.integers.find("soil_material");
+    if (material == by_id.integers.end() || material->second.size() != particles_)
+      throw std::invalid_argument("the state's array 'soil_material' is missing or has the wrong size");
+    whole.soil_material.assign(material->second.begin(), material->second.end());
+  }
+  slabs_ = slabs_for(config_, whole, transport_.processes());
+  share_ = start_share(whole, &by_id);
 }
 
 }  // namespace cascade

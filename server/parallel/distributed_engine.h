@@ -43,8 +43,12 @@ class DistributedEngine final : public Engine {
   void set_forcing(const HydraulicForcing& forcing) override { share_->set_forcing(forcing); }
   HydraulicForcing forcing() const override { return share_->forcing(); }
   void restart_clock() override { refuse("an initialisation stage"); }
-  EngineState state() const override { refuse("a checkpoint"); }
-  void restore(const EngineState&) override { refuse("a restore"); }
+  // The whole run's state, on every process, its particles in id order: what one process's
+  // engine restores, and what a split run over any number of processes restores.
+  EngineState state() const override;
+  // A state of the same case taken at any number of processes (rows in any order): the slabs are
+  // cut again at the state's positions and every process takes its share of it.
+  void restore(const EngineState& state) override;
   std::unique_ptr<Engine> clone() const override { refuse("a fork"); }
   PoreWaterAccount pore_water_account() const override;
   void set_relaxation(double local_damping) override;
@@ -57,7 +61,9 @@ class DistributedEngine final : public Engine {
 
  private:
   [[noreturn]] static void refuse(const char* what);
+  std::unique_ptr<Engine> start_share(const HostParticles& whole, const EngineState* checkpoint);
 
+  EngineConfig config_;
   Transport& transport_;
   Slabs slabs_;
   std::size_t particles_ = 0;

@@ -21,14 +21,14 @@ MpiSession::~MpiSession() {
   if (!done) MPI_Finalize();
 }
 
-MpiTransport::MpiTransport() {
-  MPI_Comm_size(MPI_COMM_WORLD, &processes_);
-  MPI_Comm_rank(MPI_COMM_WORLD, &process_);
+MpiTransport::MpiTransport(MPI_Comm communicator) : communicator_(communicator) {
+  MPI_Comm_size(communicator_, &processes_);
+  MPI_Comm_rank(communicator_, &process_);
 }
 
 double MpiTransport::reduce(double value, MPI_Op op) {
   double result = 0;
-  if (MPI_Allreduce(&value, &result, 1, MPI_DOUBLE, op, MPI_COMM_WORLD) != MPI_SUCCESS)
+  if (MPI_Allreduce(&value, &result, 1, MPI_DOUBLE, op, communicator_) != MPI_SUCCESS)
     throw std::runtime_error("MPI_Allreduce failed");
   return result;
 }
@@ -43,7 +43,7 @@ std::vector<std::vector<char>> MpiTransport::exchange(const std::vector<std::vec
       throw std::runtime_error("a message to process " + std::to_string(r) + " exceeds 2 GiB");
     send_count[r] = int(send[r].size());
   }
-  if (MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, MPI_COMM_WORLD) != MPI_SUCCESS)
+  if (MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, communicator_) != MPI_SUCCESS)
     throw std::runtime_error("MPI_Alltoall failed");
   std::vector<char> out, in;
   int total_out = 0, total_in = 0;
@@ -55,7 +55,7 @@ std::vector<std::vector<char>> MpiTransport::exchange(const std::vector<std::vec
   for (int r = 0; r < processes_; ++r) std::copy(send[r].begin(), send[r].end(), out.begin() + send_at[r]);
   in.resize(std::size_t(total_in));
   if (MPI_Alltoallv(out.data(), send_count.data(), send_at.data(), MPI_BYTE, in.data(), receive_count.data(),
-                    receive_at.data(), MPI_BYTE, MPI_COMM_WORLD) != MPI_SUCCESS)
+                    receive_at.data(), MPI_BYTE, communicator_) != MPI_SUCCESS)
     throw std::runtime_error("MPI_Alltoallv failed");
   std::vector<std::vector<char>> received(processes_);
   for (int r = 0; r < processes_; ++r)

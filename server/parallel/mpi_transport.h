@@ -1,4 +1,4 @@
-// Transport (server/core/partition.h) over MPI's world communicator: one process per rank.
+// Transport (server/core/partition.h) over an MPI communicator: one process per rank.
 #pragma once
 
 #include <mpi.h>
@@ -18,7 +18,8 @@ class MpiSession {
 
 class MpiTransport final : public Transport {
  public:
-  MpiTransport();  // over MPI_COMM_WORLD; MPI must be initialised
+  // Over `communicator` (MPI_COMM_WORLD, or a part of it); MPI must be initialised.
+  explicit MpiTransport(MPI_Comm communicator = MPI_COMM_WORLD);
   int processes() const override { return processes_; }
   int process() const override { return process_; }
   double minimum(double value) override { return reduce(value, MPI_MIN); }
@@ -28,6 +29,7 @@ class MpiTransport final : public Transport {
 
  private:
   double reduce(double value, MPI_Op op);
+  MPI_Comm communicator_;
   int processes_ = 1;
   int process_ = 0;
 };
