@@ -482,6 +482,7 @@ int run_command(const std::vector<std::string>& args) {
     exit_code = 1;
   }
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  LoadBalance balance;
   if (engine) {
     summary.sim_time = engine->time();
     summary.steps = engine->step_count();
@@ -495,6 +496,9 @@ int run_command(const std::vector<std::string>& args) {
     if (const auto* distributed = dynamic_cast<const DistributedEngine*>(engine.get()))
       for (std::size_t held : distributed->share_sizes()) summary.process_particles.push_back(held);
 #endif
+    balance = engine->load_balance();
+    summary.balance = {balance.last(), balance.mean(), balance.largest(), balance.rebuilds.size(),
+                       balance.repartitions()};
     if (split) {  // the slowest process's time in the steps' exchanges, and every process's bytes
       summary.exchange_seconds = split->maximum(summary.exchange_seconds);
       summary.exchange_bytes = std::uint64_t(split->sum(double(summary.exchange_bytes)));
@@ -505,6 +509,7 @@ int run_command(const std::vector<std::string>& args) {
   if (!root) return exit_code;
   try {
     std::filesystem::create_directories(options.out_dir);
+    if (split) write_balance_csv(options.out_dir / "balance.csv", balance);
     write_run_json(json_path, summary);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cascade run: cannot write %s: %s\n", json_path.c_str(), e.what());

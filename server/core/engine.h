@@ -15,6 +15,7 @@
 #include "server/core/field_frame.h"
 #include "server/core/host_particles.h"
 #include "server/core/hydraulic_forcing.h"
+#include "server/core/partition.h"
 #include "server/core/soil_material.h"
 
 namespace cascade {
@@ -131,6 +132,10 @@ class Engine {
   virtual void set_relaxation(double local_damping) = 0;
   virtual Equilibrium equilibrium() const = 0;
   virtual void zero_velocities() = 0;  // every moving particle at rest; positions and stresses kept
+
+  // A run split over processes: how evenly they share the work (partition.h); one process's
+  // engine has nothing to balance.
+  virtual LoadBalance load_balance() const { return {}; }
 };
 
 std::unique_ptr<Engine> make_engine(const EngineConfig& config, const HostParticles& particles);

@@ -119,6 +119,7 @@ class NeighbourList {
   }
 
   NeighbourListView<Real, Dim> view() const { return {raw(count_), raw(index_), capacity_}; }
+  const Vector<std::uint32_t>& counts() const { return count_; }  // entries per list
   std::size_t bytes() const {
     return (count_.capacity() + index_.capacity()) * sizeof(std::uint32_t);
   }

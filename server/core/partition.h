@@ -5,6 +5,7 @@
 // MPI), so that no physics header and no part of the engine depends on MPI.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -49,6 +50,60 @@ struct Slabs {
     return 0.0;
   }
 };
+
+// How evenly the processes share the work, measured at every neighbour-list rebuild: a process's
+// work is the number of list entries of the particles it owns (the pairs its interaction passes
+// visit, counted by the build; deterministic, unlike a timing, so that the run is), the imbalance
+// the largest work over the mean. Above kRepartitionImbalance the slabs are cut again where the
+// work is even (balanced_cuts) and the particles move to their new owners at once.
+inline constexpr double kRepartitionImbalance = 1.1;  // issue 17: the slowest process 10% above the mean
+
+struct LoadBalance {
+  struct Rebuild {
+    std::uint64_t step = 0;
+    double time = 0;
+    double imbalance = 1;
+    bool repartitioned = false;  // the slabs were cut again at this rebuild (the imbalance is after it)
+  };
+  std::vector<Rebuild> rebuilds;
+
+  double last() const { return rebuilds.empty() ? 1.0 : rebuilds.back().imbalance; }
+  double largest() const {
+    double l = 1;
+    for (const auto& r : rebuilds) l = std::max(l, r.imbalance);
+    return l;
+  }
+  double mean() const {
+    double sum = 0;
+    for (const auto& r : rebuilds) sum += r.imbalance;
+    return rebuilds.empty() ? 1.0 : sum / double(rebuilds.size());
+  }
+  std::size_t repartitions() const {
+    std::size_t n = 0;
+    for (const auto& r : rebuilds) n += r.repartitioned;
+    return n;
+  }
+};
+
+// The cuts that give each of `processes` slabs an equal part of the work in `histogram`, whose
+// bins split [low, high] evenly (linear within a bin).
+inline std::vector<double> balanced_cuts(const std::vector<double>& histogram, double low, double high, int processes) {
+  std::vector<double> cut(processes + 1, 0.0);
+  cut.front() = -std::numeric_limits<double>::infinity();
+  cut.back() = std::numeric_limits<double>::infinity();
+  double total = 0;
+  for (double w : histogram) total += w;
+  const double width = (high - low) / double(histogram.size());
+  std::size_t bin = 0;
+  double below = 0;  // work in the bins before `bin`
+  for (int r = 1; r < processes; ++r) {
+    const double target = total * double(r) / double(processes);
+    while (bin + 1 < histogram.size() && below + histogram[bin] < target) below += histogram[bin++];
+    const double inside = histogram[bin] > 0 ? std::clamp((target - below) / histogram[bin], 0.0, 1.0) : 0.0;
+    cut[r] = std::max(cut[r - 1], low + (double(bin) + inside) * width);
+  }
+  return cut;
+}
 
 // What a process's engine needs to know of the split: its transport, the slabs, and for each of
 // its particles (in the order of the HostParticles it is built from) the particle's id in the

@@ -118,7 +118,7 @@ class Simulation final : public Engine {
     // extrapolation), so that frame 0 has them. A share of a split run first settles which copies
     // each process holds by the engine's own rule (share_particles), in its own precision. A
     // share that starts from a checkpoint keeps the checkpoint's values, as restore() does.
-    if (transport_) share_particles();
+    if (transport_) share_particles(false);
     sort_by_cell();
     if (start) return;
     boundary_values(false);
@@ -179,6 +179,7 @@ class Simulation final : public Engine {
   double last_dt() const override { return dt_; }
   std::size_t particle_count() const override { return phase_.size(); }
   std::size_t lost_particles() const override { return phase_.size() - active_; }
+  LoadBalance load_balance() const override { return balance_; }
   PoreWaterAccount pore_water_account() const override {
     const thrust::host_vector<double> totals(pore_water_totals_.begin(), pore_water_totals_.end());
     return {totals[0], totals[1], totals[2]};
@@ -611,7 +612,7 @@ class Simulation final : public Engine {
   void update_lists() {
     if (!neighbours_.built()) list_at_listed_positions();
     if (lists_hold()) return;
-    if (transport_) share_particles();
+    if (transport_) share_particles(cut_where_balanced());
     sort_by_cell();
   }
 
@@ -910,9 +911,11 @@ class Simulation final : public Engine {
 
   // At a list rebuild, before the sort: an owned particle that has crossed into another slab goes
   // to that slab's process; then the copies are dropped and each process sends every other the
-  // particles it owns within that process's halo. Dummies never move and stay where they are;
-  // so do particles that left the domain (their owner counts them lost).
-  void share_particles() {
+  // particles it owns within that process's halo. Dummies never move and stay where they are,
+  // unless the slabs were `cut_again`: then each process sends the dummies of its old slab to
+  // those whose new halo holds them and keeps them where its own does; the rest it drops. The
+  // particles that left the domain stay (their owner counts them lost).
+  void share_particles(bool cut_again) {
     const std::uint32_t me = process();
     const int processes = transport_->processes();
     const GridView<Real, Dim> domain = cells_.view();
@@ -926,6 +929,15 @@ class Simulation final : public Engine {
       std::vector<std::uint32_t> kept;
       std::vector<std::vector<std::uint32_t>> leaving(processes);
       for (std::uint32_t k = 0; k < phase.size(); ++k) {
+        if (phase[k] == Phase::boundary && cut_again) {
+          if (owner[k] != me) continue;  // its old slab's process sends it where it is needed
+          const double x = double(position[k][slabs_.axis]);
+          owner[k] = std::uint32_t(slabs_.owner_of(x));
+          for (int r = 0; r < processes; ++r)
+            if (r != int(me) && slabs_.distance_to(r, x) < slabs_.halo) leaving[r].push_back(k);
+          if (slabs_.distance_to(int(me), x) < slabs_.halo) kept.push_back(k);
+          continue;
+        }
         if (phase[k] != Phase::boundary && owner[k] != me) continue;  // a copy
         const int to = moving_inside(position, phase, k) ? slabs_.owner_of(double(position[k][slabs_.axis])) : int(me);
         if (to == int(me)) {
@@ -940,6 +952,14 @@ class Simulation final : public Engine {
       for (int r = 0; r < processes; ++r)
         if (!leaving[r].empty()) send[r] = pack_particles(leaving[r]);
       keep_and_receive(kept, transport_->exchange(send));
+    }
+    if (cut_again) {  // the dummies received: their new owners
+      const thrust::host_vector<V> position(position_.begin(), position_.end());
+      const thrust::host_vector<Phase> phase(phase_.begin(), phase_.end());
+      thrust::host_vector<std::uint32_t> owner(owner_.begin(), owner_.end());
+      for (std::size_t k = 0; k < phase.size(); ++k)
+        if (phase[k] == Phase::boundary) owner[k] = std::uint32_t(slabs_.owner_of(double(position[k][slabs_.axis])));
+      owner_ = owner;
     }
     const thrust::host_vector<V> position(position_.begin(), position_.end());
     const thrust::host_vector<Phase> phase(phase_.begin(), phase_.end());
@@ -1004,6 +1024,56 @@ class Simulation final : public Engine {
       halo_receive_[r] = Vector<std::uint32_t>(receive[r].begin(), receive[r].end());
     }
     mark_near_particles(position, owner);
+    measure_balance(owner);
+  }
+
+  // The work of every process at this rebuild (LoadBalance, partition.h): the list entries of the
+  // particles it owns.
+  void measure_balance(const thrust::host_vector<std::uint32_t>& owner) {
+    const thrust::host_vector<std::uint32_t> count(neighbours_.counts().begin(), neighbours_.counts().end());
+    double work = 0;
+    for (std::size_t k = 0; k < count.size(); ++k)
+      if (owner[k] == process()) work += double(count[k]);
+    const double largest = transport_->maximum(work), total = transport_->sum(work);
+    const double imbalance = total > 0 ? largest / (total / double(transport_->processes())) : 1.0;
+    balance_.rebuilds.push_back({steps_, time_, imbalance, cut_again_});
+    cut_again_ = false;
+  }
+
+  // At a rebuild, before share_particles: where the last rebuild's imbalance exceeds
+  // kRepartitionImbalance, new cuts that even out the work of its lists (balanced_cuts, from the
+  // histogram of every process's owned work along the axis at the current positions).
+  bool cut_where_balanced() {
+    if (balance_.last() <= kRepartitionImbalance) return false;
+    constexpr std::size_t bins = 4096;
+    const thrust::host_vector<V> position(position_.begin(), position_.begin() + moving_);
+    const thrust::host_vector<std::uint32_t> owner(owner_.begin(), owner_.begin() + moving_);
+    const thrust::host_vector<std::uint32_t> count(neighbours_.counts().begin(), neighbours_.counts().end());
+    const GridView<Real, Dim> domain = cells_.view();
+    std::vector<std::uint32_t> owned;
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (std::uint32_t k = 0; k < moving_; ++k) {
+      if (owner[k] != process() || !domain.contains(position[k])) continue;
+      owned.push_back(k);
+      low = std::min(low, double(position[k][slabs_.axis])), high = std::max(high, double(position[k][slabs_.axis]));
+    }
+    low = transport_->minimum(low), high = transport_->maximum(high);
+    if (!(high > low)) return false;
+    std::vector<double> histogram(bins, 0.0);
+    for (std::uint32_t k : owned) {
+      const double x = (double(position[k][slabs_.axis]) - low) / (high - low) * double(bins);
+      histogram[std::min(bins - 1, std::size_t(std::max(0.0, x)))] += double(count[k]);
+    }
+    std::vector<char> message(bins * sizeof(double));
+    std::memcpy(message.data(), histogram.data(), message.size());
+    const auto received = transport_->exchange(std::vector<std::vector<char>>(transport_->processes(), message));
+    std::vector<double> whole(bins, 0.0), part(bins);
+    for (const auto& in : received) {  // in the order of the processes, the same sums on each
+      std::memcpy(part.data(), in.data(), message.size());
+      for (std::size_t b = 0; b < bins; ++b) whole[b] += part[b];
+    }
+    slabs_.cut = balanced_cuts(whole, low, high, transport_->processes());
+    return cut_again_ = true;
   }
 
   // What this process's own particles read, through one evaluation, of its copies and dummies
@@ -1102,6 +1172,8 @@ class Simulation final : public Engine {
   Vector<std::uint32_t> owner_;     // with a transport: per particle, the process that owns it
   Vector<std::uint8_t> near_;       // with a transport: per moving particle, 1 where its gradients are read
   std::vector<Vector<std::uint32_t>> halo_send_, halo_receive_;  // per process: rows (map_halo)
+  LoadBalance balance_;             // with a transport: measured at every rebuild (measure_balance)
+  bool cut_again_ = false;          // the slabs were cut again for the coming rebuild (cut_where_balanced)
 };
 
 // The engine on one backend, in the precision and dimension the configuration asks for.

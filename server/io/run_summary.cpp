@@ -115,6 +115,11 @@ std::string run_summary_json(const RunSummary& s) {
     j += "],\n";
     j += "  \"exchange\": {\"seconds\": " + json_number(s.exchange_seconds) +
          ", \"bytes\": " + std::to_string(s.exchange_bytes) + "},\n";
+    j += "  \"balance\": {\"work\": \"neighbour-list entries of the particles a process owns\", \"imbalance\": " +
+         json_number(s.balance.last) + ", \"mean_imbalance\": " + json_number(s.balance.mean) +
+         ", \"largest_imbalance\": " + json_number(s.balance.largest) + ", \"repartition_above\": " +
+         json_number(kRepartitionImbalance) + ", \"rebuilds\": " + std::to_string(s.balance.rebuilds) +
+         ", \"repartitions\": " + std::to_string(s.balance.repartitions) + ", \"by_rebuild\": \"balance.csv\"},\n";
   }
   if (s.pore_water.present)
     j += "  \"pore_water\": {\"rain\": " + json_number(s.pore_water.rain) + ", \"walls\": " +
@@ -146,6 +151,14 @@ std::string run_summary_json(const RunSummary& s) {
 void write_run_json(const std::filesystem::path& path, const RunSummary& summary) {
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
   write_file_atomically(path, run_summary_json(summary));
+}
+
+void write_balance_csv(const std::filesystem::path& path, const LoadBalance& balance) {
+  std::string csv = "step,time,imbalance,repartitioned\n";
+  for (const auto& r : balance.rebuilds)
+    csv += std::to_string(r.step) + "," + format_double(r.time) + "," + format_double(r.imbalance) + "," +
+           (r.repartitioned ? "1" : "0") + "\n";
+  write_file_atomically(path, csv);
 }
 
 }  // namespace cascade

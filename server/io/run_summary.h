@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "server/core/partition.h"
+
 namespace cascade {
 
 struct RunEvent {
@@ -36,6 +38,12 @@ struct RunSummary {
   std::vector<std::uint64_t> process_particles;  // and the particles each held at the end,
   double exchange_seconds = 0;    // the wall time of the steps' exchanges (the slowest process's),
   std::uint64_t exchange_bytes = 0;  // and the bytes all processes sent in them
+  // How evenly they shared the work (LoadBalance, server/core/partition.h), over the list
+  // rebuilds; every rebuild's figure is in balance.csv.
+  struct Balance {
+    double last = 1, mean = 1, largest = 1;
+    std::uint64_t rebuilds = 0, repartitions = 0;
+  } balance;
   std::uint64_t lost_particles = 0;        // particles that left the domain
   // The pore water that entered the soil through each boundary (Engine::pore_water_account; m³,
   // m² per metre of depth in 2D), written only for a case with soil.
@@ -61,5 +69,9 @@ std::string run_summary_json(const RunSummary& summary);
 
 // Writes run_summary_json(summary) to `path` atomically (temporary file, then rename).
 void write_run_json(const std::filesystem::path& path, const RunSummary& summary);
+
+// A split run's balance.csv: per list rebuild the step, the time, the imbalance (the most work of a
+// process over the mean, measured after the rebuild) and whether the slabs were cut again there.
+void write_balance_csv(const std::filesystem::path& path, const LoadBalance& balance);
 
 }  // namespace cascade

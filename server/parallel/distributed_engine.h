@@ -54,6 +54,7 @@ class DistributedEngine final : public Engine {
   void set_relaxation(double local_damping) override;
   Equilibrium equilibrium() const override { refuse("a geostatic stage"); }
   void zero_velocities() override { share_->zero_velocities(); }
+  LoadBalance load_balance() const override { return share_->load_balance(); }  // the same on every process
 
   const Slabs& slabs() const { return slabs_; }
   std::size_t share_size() const { return share_->particle_count(); }  // owned, copies and dummies held

@@ -1,7 +1,8 @@
 """`mpirun -np N cascade run` (issue 17): a run split over processes writes what one process writes.
 
 Real processes: `cascade run` alone and under mpirun at 2 and 3 processes (one thread each, more
-processes than cores with --oversubscribe), their fields.h5, probes.csv and run.json read back.
+processes than cores with --oversubscribe), their fields.h5, probes.csv, run.json and balance.csv
+read back.
 Registered only in builds with CASCADE_MPI (tests/CMakeLists.txt).
 
 Tolerances: each process lists a particle's neighbours in the order of its own share, so sums are
@@ -74,6 +75,25 @@ class SplitRun(unittest.TestCase):
         self.assertEqual(summary["steps"], alone_summary["steps"])
         self.assertEqual(summary["lost_particles"], 0)
         self.assertEqual(summary["particles"], alone_summary["particles"])
+
+        # The load balance: every list rebuild in balance.csv, summed up in run.json; the surge
+        # moves the work across the slabs and the repartitions even it out (within 10% at once).
+        balance = summary["balance"]
+        lines = (split / "balance.csv").read_text().splitlines()
+        self.assertEqual(lines[0], "step,time,imbalance,repartitioned")
+        rebuilds = [[float(v) for v in line.split(",")] for line in lines[1:]]
+        self.assertEqual(len(rebuilds), balance["rebuilds"])
+        self.assertGreater(balance["rebuilds"], 10)
+        imbalance = [r[2] for r in rebuilds]
+        self.assertAlmostEqual(balance["largest_imbalance"], max(imbalance), delta=1e-12)
+        self.assertAlmostEqual(balance["mean_imbalance"], sum(imbalance) / len(imbalance), delta=1e-12)
+        self.assertEqual(balance["imbalance"], imbalance[-1])
+        repartitioned = [r for r in rebuilds if r[3] == 1]
+        self.assertEqual(len(repartitioned), balance["repartitions"])
+        self.assertGreaterEqual(balance["repartitions"], 1)
+        self.assertLessEqual(max(r[2] for r in repartitioned), balance["repartition_above"])
+        steps = [r[0] for r in rebuilds]
+        self.assertEqual(steps, sorted(steps))
 
         with h5py.File(self.alone / "fields.h5", "r") as a, h5py.File(split / "fields.h5", "r") as b:
             one, many = datasets(a), datasets(b)

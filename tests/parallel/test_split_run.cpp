@@ -147,10 +147,12 @@ void compare_with_one_process(const std::string& case_file, const std::string& c
       worst_front = std::max(worst_front, std::abs(front(f) - front(reference)) / length);
     }
     const Difference d = largest_difference(f, reference, alone.config.dp);
+    const LoadBalance balance = split.load_balance();
     std::printf("%s, %d processes, step %llu (t = %.4g s): largest |Δx| %.3g dp, |Δ field| %.3g of its range (%s); "
-                "process 0 holds %zu of %zu particles\n",
+                "process 0 holds %zu of %zu particles; imbalance %.3f (largest %.3f), %zu repartitions\n",
                 case_file.c_str(), transport->processes(), static_cast<unsigned long long>(split.step_count()),
-                split.time(), d.position, d.field, d.worst_field.c_str(), split.share_size(), split.particle_count());
+                split.time(), d.position, d.field, d.worst_field.c_str(), split.share_size(), split.particle_count(),
+                balance.last(), balance.largest(), balance.repartitions());
     if (double(k + 1) * interval > round_off_until * (1 + 1e-9)) continue;  // the frame's due time
     ++round_off_frames;
     EXPECT_NEAR(split.time(), reference.time, 1e-12 * reference.time);  // the same steps
@@ -189,6 +191,22 @@ void compare_with_one_process(const std::string& case_file, const std::string& c
               .metric = "largest |front − front_one process| / the tank's length" + to(int(one.steps.size()), end),
               .measured = worst_front, .reference_value = 0.01, .bound = testing::Bound::at_most,
               .tolerance_source = "issue 17: the surge front within 1% of the tank's length up to T = 3"});
+  // The load balance: a flow that moves across the slabs (the dam break's surge) sets off
+  // repartitions, and each leaves the work within 10% of the mean at the rebuild where it is made.
+  const LoadBalance balance = split.load_balance();
+  if (length > 0 && transport->processes() > 1) {
+    double after = 0;
+    for (const auto& r : balance.rebuilds)
+      if (r.repartitioned) after = std::max(after, r.imbalance);
+    std::printf("%s: %zu repartitions at %zu rebuilds; imbalance largest %.3f, mean %.3f, after a repartition at most %.3f\n",
+                case_file.c_str(), balance.repartitions(), balance.rebuilds.size(), balance.largest(), balance.mean(), after);
+    EXPECT_GE(balance.repartitions(), 1u) << "the surge moves the work across the slabs";
+    validate({.case_name = case_name, .reference = "issue 17: repartition when the slowest process's work exceeds the mean by 10%",
+              .metric = "largest imbalance (the most work of a process / the mean) at a rebuild where the slabs were cut "
+                        "again" + to(int(one.steps.size()), end),
+              .measured = after, .reference_value = kRepartitionImbalance, .bound = testing::Bound::at_most,
+              .tolerance_source = "issue 17: the slowest process within 10% of the mean"});
+  }
 }
 
 // T = t sqrt(2g/a) = 3 at t = 0.259 s (test_dam_break_2d.cpp); the tank is 4a = 0.584 m long. At
