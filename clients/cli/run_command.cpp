@@ -19,6 +19,7 @@
 #include "server/core/engine.h"
 #include "server/core/free_cores.h"
 #include "server/core/partition.h"
+#include "server/parallel/launched_processes.h"
 #include "server/parallel/measured_transport.h"
 #include "server/io/hdf5_writer.h"
 #include "server/io/journal.h"
@@ -108,13 +109,6 @@ RunOptions parse_options(const std::vector<std::string>& args) {
 }
 
 const char* precision_name(Precision p) { return p == Precision::single_precision ? "float" : "double"; }
-
-// The processes of an mpirun launch, from Open MPI's or MPICH's environment; 1 without one.
-int launched_processes() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
-    if (const char* value = std::getenv(name)) return std::max(1, std::atoi(value));
-  return 1;
-}
 
 // Writes frames (with their PNG snapshots) and probes at their intervals. Frames every
 // `output.interval`, probes every `output.probe_interval`, both also at the start and at the end

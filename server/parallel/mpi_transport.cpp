@@ -6,10 +6,17 @@
 
 namespace cascade {
 
-MpiSession::MpiSession(int* argc, char*** argv) {
+MpiSession::MpiSession(int* argc, char*** argv, bool threads) {
   int ready = 0;
   MPI_Initialized(&ready);
-  if (!ready) MPI_Init(argc, argv);
+  if (!ready) {
+    int provided = MPI_THREAD_SINGLE;
+    MPI_Init_thread(argc, argv, threads ? MPI_THREAD_MULTIPLE : MPI_THREAD_FUNNELED, &provided);
+    if (threads && provided < MPI_THREAD_MULTIPLE) {
+      MPI_Finalize();
+      throw std::runtime_error("the MPI library does not let several threads call it at once (MPI_THREAD_MULTIPLE)");
+    }
+  }
   // A failure is reported by the process that meets it, as an exception like any other; the
   // default handler would abort every process without a message.
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);

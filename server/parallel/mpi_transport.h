@@ -8,9 +8,11 @@
 namespace cascade {
 
 // MPI_Init on construction and MPI_Finalize on destruction, for a program launched by mpirun.
+// `threads`: MPI called from several threads at once (the split server's sessions), which the MPI
+// library must provide (MPI_THREAD_MULTIPLE) or the constructor throws.
 class MpiSession {
  public:
-  MpiSession(int* argc, char*** argv);
+  MpiSession(int* argc, char*** argv, bool threads = false);
   ~MpiSession();
   MpiSession(const MpiSession&) = delete;
   MpiSession& operator=(const MpiSession&) = delete;

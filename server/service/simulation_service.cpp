@@ -114,6 +114,7 @@ SessionConfig SimulationService::session_config(const std::string& id, v1::Scena
   session.engine = engine_config(spec, *session.particles, options_.precision, options_.device);
   session.spec = std::move(spec);
   session.make_engine = options_.make_engine ? options_.make_engine : EngineFactory(&cascade::make_engine);
+  if (options_.split_engine) session.make_engine = options_.split_engine(session.spec);
   session.directory = options_.data_dir / "simulations" / id;
   session.threads = options_.threads;
   session.caller = caller;

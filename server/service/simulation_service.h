@@ -30,6 +30,9 @@ struct ServiceOptions {
   std::size_t max_simulations = 8;        // held at once (any state)
   AccessControl access;
   EngineFactory make_engine;              // empty: cascade::make_engine
+  // Set: the engine factory of each session, given its case (a server split over processes,
+  // server/parallel/split_server.h); it takes the place of make_engine.
+  std::function<EngineFactory(const v1::ScenarioSpec&)> split_engine;
 };
 
 class SimulationService final : public v1::SimulationService::CallbackService {

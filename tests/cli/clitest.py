@@ -139,20 +139,28 @@ class Server:
     listens on another host, e.g. `listen="0.0.0.0:0"`). `env`: variables added to the server's
     environment. `server.warnings`: the lines it printed before the one that says where it listens."""
 
-    def __init__(self, name, *args, env=None, listen="127.0.0.1:0"):
+    def __init__(self, name, *args, env=None, listen="127.0.0.1:0", processes=None):
         self.env = {**os.environ, **(env or {})}
+        self.processes = processes
         self.data_dir = WORK_DIR / name
         self.args = [str(CASCADE.parent / "cascade-server"), "--listen", listen, "--data-dir",
                      str(self.data_dir), "--threads", "1", *map(str, args)]
+        if processes:  # split over processes (issue 17): under mpirun, as tests/cli/test_split_run.py
+            launcher = shutil.which("mpirun")
+            if launcher is None:
+                raise AssertionError("mpirun is missing: install openmpi-bin (scripts/install-deps.sh)")
+            self.args = [launcher, "--oversubscribe", "--allow-run-as-root", "-np", str(processes), *self.args]
+            self.env["OMPI_MCA_btl_vader_single_copy_mechanism"] = "none"
         self.process = None
         self.address = None
 
     def __enter__(self):
         self.process = subprocess.Popen(self.args, stderr=subprocess.PIPE, text=True, env=self.env)
         self.warnings = []
+        self.notes = []  # what else it printed before that line (a split server says so)
         line = self.process.stderr.readline()
-        while "WARNING" in line:
-            self.warnings.append(line)
+        while line and "listening on " not in line:
+            (self.warnings if "WARNING" in line else self.notes).append(line)
             line = self.process.stderr.readline()
         if "listening on " not in line:
             self.process.kill()
@@ -167,10 +175,15 @@ class Server:
         rest = self.process.communicate(timeout=30)[1]
         return self.process.returncode, rest
 
+    def stopped_cleanly(self, code, rest):
+        """Whether the server ended as SIGTERM should end it. Open MPI's mpirun exits 1 after it has
+        passed a SIGTERM on, even when every process exits 0: under mpirun, process 0's last line."""
+        return "cascade-server: stopped" in rest if self.processes else code == 0
+
     def __exit__(self, *exc):
         if self.process.poll() is None:
             code, rest = self.stop()
-            if exc[0] is None and code != 0:
+            if exc[0] is None and not self.stopped_cleanly(code, rest):
                 raise AssertionError(f"cascade-server exited {code}: {rest}")
 
     def cli(self, *args, token=None):

@@ -1,0 +1,241 @@
+#include "server/parallel/split_server.h"
+
+#include <mpi.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "server/parallel/distributed_engine.h"
+#include "server/parallel/mpi_transport.h"
+#include "server/parallel/state_message.h"
+#include "server/scenario/engine_setup.h"
+#include "server/scenario/particle_builder.h"
+
+namespace cascade {
+namespace {
+
+// What process 0 announces on MPI_COMM_WORLD: a new engine (the case follows), or the end.
+enum class Announcement : std::uint32_t { engine = 1, finish = 2 };
+
+// What process 0's engine hands to the others on the engine's communicator.
+enum class Call : std::uint32_t {
+  step = 1,
+  set_forcing,
+  frame,
+  lost_particles,
+  device_bytes,
+  pore_water_account,
+  state,
+  restore,
+  zero_velocities,
+  set_relaxation,
+  end,
+};
+
+void check(int result, const char* what) {
+  if (result != MPI_SUCCESS) throw std::runtime_error(std::string(what) + " failed");
+}
+
+// Waits for `request` without holding a core: MPI's blocking calls poll, and a process waits for
+// process 0's next call as long as a simulation is paused (and for the next announcement as long
+// as the server runs). A call that follows at once (the next step) is met within microseconds.
+void wait_idle(MPI_Request& request) {
+  for (int polls = 0;; ++polls) {
+    int done = 0;
+    check(MPI_Test(&request, &done, MPI_STATUS_IGNORE), "MPI_Test");
+    if (done) return;
+    if (polls < 1000) std::this_thread::yield();
+    else std::this_thread::sleep_for(std::chrono::microseconds(polls < 2000 ? 50 : 1000));
+  }
+}
+
+// Nonblocking on every process (a nonblocking collective matches only nonblocking ones).
+void broadcast_part(void* data, int count, MPI_Datatype type, MPI_Comm communicator) {
+  int process = 0;
+  MPI_Comm_rank(communicator, &process);
+  MPI_Request request;
+  check(MPI_Ibcast(data, count, type, 0, communicator, &request), "MPI_Ibcast");
+  if (process == 0) check(MPI_Wait(&request, MPI_STATUS_IGNORE), "MPI_Wait");
+  else wait_idle(request);
+}
+
+// A kind and its bytes from process 0 (root of `communicator`) to all.
+void broadcast(MPI_Comm communicator, std::uint32_t& kind, std::vector<char>& bytes) {
+  std::uint64_t header[2] = {kind, bytes.size()};
+  broadcast_part(header, 2, MPI_UINT64_T, communicator);
+  kind = std::uint32_t(header[0]);
+  bytes.resize(std::size_t(header[1]));
+  std::size_t at = 0;
+  while (at < bytes.size()) {  // MPI's counts are ints
+    const int chunk = int(std::min<std::size_t>(bytes.size() - at, 1u << 30));
+    broadcast_part(bytes.data() + at, chunk, MPI_BYTE, communicator);
+    at += std::size_t(chunk);
+  }
+}
+
+bool staged(const v1::ScenarioSpec& spec) { return spec.stages_size() > 0 || spec.has_initialisation(); }
+
+// Process 0's engine: its share of the run, and the others told of every call they must make too.
+class LeaderEngine final : public Engine {
+ public:
+  LeaderEngine(const EngineConfig& config, const HostParticles& whole, MPI_Comm communicator)
+      : communicator_(communicator), transport_(communicator) {
+    try {
+      engine_ = std::make_unique<DistributedEngine>(config, whole, transport_);
+    } catch (...) {  // the others met the same (the same case, the same rule) and freed theirs
+      MPI_Comm_free(&communicator_);
+      throw;
+    }
+  }
+  ~LeaderEngine() override {
+    try {
+      call(Call::end);
+    } catch (...) {
+    }
+    engine_.reset();
+    MPI_Comm_free(&communicator_);
+  }
+
+  void step() override { call(Call::step), engine_->step(); }
+  double time() const override { return engine_->time(); }
+  std::uint64_t step_count() const override { return engine_->step_count(); }
+  double last_dt() const override { return engine_->last_dt(); }
+  std::size_t particle_count() const override { return engine_->particle_count(); }
+  std::size_t lost_particles() const override { return call(Call::lost_particles), engine_->lost_particles(); }
+  std::size_t device_bytes() const override { return call(Call::device_bytes), engine_->device_bytes(); }
+  FieldFrame frame() const override { return call(Call::frame), engine_->frame(); }
+  const char* device_name() const override { return engine_->device_name(); }
+  void set_forcing(const HydraulicForcing& forcing) override {
+    std::vector<char> bytes(sizeof forcing);
+    std::memcpy(bytes.data(), &forcing, sizeof forcing);
+    call(Call::set_forcing, bytes);
+    engine_->set_forcing(forcing);
+  }
+  HydraulicForcing forcing() const override { return engine_->forcing(); }
+  void restart_clock() override { engine_->restart_clock(); }  // refused by the split engine, here alone
+  EngineState state() const override { return call(Call::state), engine_->state(); }
+  void restore(const EngineState& state) override { call(Call::restore, state_message(state)), engine_->restore(state); }
+  std::unique_ptr<Engine> clone() const override { return engine_->clone(); }  // refused, here alone
+  PoreWaterAccount pore_water_account() const override {
+    return call(Call::pore_water_account), engine_->pore_water_account();
+  }
+  void set_relaxation(double local_damping) override {
+    if (local_damping != 0) engine_->set_relaxation(local_damping);  // refused, here alone
+    call(Call::set_relaxation), engine_->set_relaxation(0);
+  }
+  Equilibrium equilibrium() const override { return engine_->equilibrium(); }  // refused, here alone
+  void zero_velocities() override { call(Call::zero_velocities), engine_->zero_velocities(); }
+  LoadBalance load_balance() const override { return engine_->load_balance(); }
+
+ private:
+  void call(Call c, std::vector<char> bytes = {}) const {
+    auto kind = std::uint32_t(c);
+    broadcast(communicator_, kind, bytes);
+  }
+
+  MPI_Comm communicator_;
+  MpiTransport transport_;
+  std::unique_ptr<DistributedEngine> engine_;
+};
+
+// Another process's share of one engine: the calls of process 0's LeaderEngine, made on it, until
+// the engine ends. A failure is met by every process at the same reduction (DistributedEngine),
+// and process 0 reports it; here the share waits for the next call.
+void follow_engine(const std::string& case_bytes, Precision precision, Device device, int threads, MPI_Comm communicator) {
+  if (threads > 0) omp_set_num_threads(threads);
+  v1::ScenarioSpec spec;
+  spec.ParseFromString(case_bytes);
+  std::unique_ptr<DistributedEngine> engine;
+  MpiTransport transport(communicator);
+  try {
+    const HostParticles particles = build_particle_set(spec).particles;
+    engine = std::make_unique<DistributedEngine>(engine_config(spec, particles, precision, device), particles, transport);
+  } catch (const std::exception&) {  // process 0 met the same and reports it
+    MPI_Comm_free(&communicator);
+    return;
+  }
+  for (;;) {
+    std::uint32_t kind = 0;
+    std::vector<char> bytes;
+    broadcast(communicator, kind, bytes);
+    const Call c = Call(kind);
+    if (c == Call::end) break;
+    try {
+      switch (c) {
+        case Call::step: engine->step(); break;
+        case Call::set_forcing: {
+          HydraulicForcing forcing;
+          if (bytes.size() != sizeof forcing) throw std::logic_error("a forcing message of the wrong size");
+          std::memcpy(&forcing, bytes.data(), sizeof forcing);
+          engine->set_forcing(forcing);
+          break;
+        }
+        case Call::frame: engine->frame(); break;
+        case Call::lost_particles: engine->lost_particles(); break;
+        case Call::device_bytes: engine->device_bytes(); break;
+        case Call::pore_water_account: engine->pore_water_account(); break;
+        case Call::state: engine->state(); break;
+        case Call::restore: engine->restore(state_from_message(bytes)); break;
+        case Call::zero_velocities: engine->zero_velocities(); break;
+        case Call::set_relaxation: engine->set_relaxation(0); break;
+        case Call::end: break;
+      }
+    } catch (const std::exception&) {
+    }
+  }
+  engine.reset();
+  MPI_Comm_free(&communicator);
+}
+
+}  // namespace
+
+SplitEngineFactory SplitEngineLauncher::factory(const v1::ScenarioSpec& spec) {
+  std::string case_bytes;
+  spec.SerializeToString(&case_bytes);
+  const bool refused = staged(spec);
+  return [this, case_bytes, refused](const EngineConfig& config, const HostParticles& whole) -> std::unique_ptr<Engine> {
+    if (refused)
+      throw std::invalid_argument("a case with stages or an initialisation stage cannot be split over processes yet "
+                                  "(issue 17); run cascade-server as one process for it");
+    MPI_Comm communicator = MPI_COMM_NULL;
+    {
+      std::lock_guard lock(world_);
+      auto kind = std::uint32_t(Announcement::engine);
+      std::vector<char> bytes(case_bytes.begin(), case_bytes.end());
+      broadcast(MPI_COMM_WORLD, kind, bytes);
+      check(MPI_Comm_dup(MPI_COMM_WORLD, &communicator), "MPI_Comm_dup");
+    }
+    return std::make_unique<LeaderEngine>(config, whole, communicator);
+  };
+}
+
+void SplitEngineLauncher::finish() {
+  std::lock_guard lock(world_);
+  auto kind = std::uint32_t(Announcement::finish);
+  std::vector<char> none;
+  broadcast(MPI_COMM_WORLD, kind, none);
+}
+
+void follow_split_engines(Precision precision, Device device, int threads) {
+  std::vector<std::thread> engines;
+  for (;;) {
+    std::uint32_t kind = 0;
+    std::vector<char> bytes;
+    broadcast(MPI_COMM_WORLD, kind, bytes);
+    if (Announcement(kind) != Announcement::engine) break;
+    MPI_Comm communicator = MPI_COMM_NULL;
+    check(MPI_Comm_dup(MPI_COMM_WORLD, &communicator), "MPI_Comm_dup");
+    engines.emplace_back(follow_engine, std::string(bytes.begin(), bytes.end()), precision, device, threads,
+                         communicator);
+  }
+  for (auto& engine : engines) engine.join();
+}
+
+}  // namespace cascade
