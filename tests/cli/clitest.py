@@ -49,6 +49,25 @@ def run(*args, timeout=60):
                           cwd=WORK_DIR)
 
 
+def mpirun_launch(processes):
+    """The command line that starts a program as PROCESSES processes under mpirun (issue 17), more
+    processes than cores with --oversubscribe, and its environment."""
+    launcher = shutil.which("mpirun")
+    if launcher is None:
+        raise AssertionError("mpirun is missing: install openmpi-bin (scripts/install-deps.sh)")
+    # Copies between processes through Open MPI's buffers, not the kernel's cross-memory attach,
+    # which containers may forbid (tests/CMakeLists.txt).
+    env = dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none")
+    return [launcher, "--oversubscribe", "--allow-run-as-root", "-np", str(processes)], env
+
+
+def mpirun(processes, *args, timeout=300):
+    """`mpirun -np PROCESSES cascade ARGS`."""
+    launch, env = mpirun_launch(processes)
+    return subprocess.run([*launch, str(CASCADE), *map(str, args)], capture_output=True, text=True, timeout=timeout,
+                          cwd=WORK_DIR, env=env)
+
+
 def out_dir(name):
     """A fresh, not yet existing output folder under the work dir."""
     d = WORK_DIR / name
@@ -145,12 +164,10 @@ class Server:
         self.data_dir = WORK_DIR / name
         self.args = [str(CASCADE.parent / "cascade-server"), "--listen", listen, "--data-dir",
                      str(self.data_dir), "--threads", "1", *map(str, args)]
-        if processes:  # split over processes (issue 17): under mpirun, as tests/cli/test_split_run.py
-            launcher = shutil.which("mpirun")
-            if launcher is None:
-                raise AssertionError("mpirun is missing: install openmpi-bin (scripts/install-deps.sh)")
-            self.args = [launcher, "--oversubscribe", "--allow-run-as-root", "-np", str(processes), *self.args]
-            self.env["OMPI_MCA_btl_vader_single_copy_mechanism"] = "none"
+        if processes:  # split over processes (issue 17)
+            launch, launch_env = mpirun_launch(processes)
+            self.args = [*launch, *self.args]
+            self.env = {**launch_env, **(env or {})}
         self.process = None
         self.address = None
 

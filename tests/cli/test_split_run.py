@@ -13,27 +13,12 @@ shows the same bounds fail for a halo one list radius wide).
 
 import json
 import math
-import os
-import shutil
-import subprocess
 import unittest
 
 import clitest
 
 DP = 0.0073  # cases/dam_break_2d.yaml at dp = a/20, half its resolution: the comparison holds at any
 DAM_BREAK = ["--set", f"dp={DP}", "--until", "0.1"]
-
-
-def mpirun(processes, *args, timeout=300):
-    launcher = shutil.which("mpirun")
-    if launcher is None:
-        raise AssertionError("mpirun is missing: install openmpi-bin (scripts/install-deps.sh)")
-    # Copies between processes through Open MPI's buffers, not the kernel's cross-memory attach,
-    # which containers may forbid (tests/CMakeLists.txt).
-    env = dict(os.environ, OMPI_MCA_btl_vader_single_copy_mechanism="none")
-    return subprocess.run([launcher, "--oversubscribe", "--allow-run-as-root", "-np", str(processes),
-                           str(clitest.CASCADE), *map(str, args)],
-                          capture_output=True, text=True, timeout=timeout, cwd=clitest.WORK_DIR, env=env)
 
 
 def datasets(h5, group=None, prefix=""):
@@ -60,7 +45,7 @@ class SplitRun(unittest.TestCase):
         import numpy as np
         h5py = clitest.import_h5py()
         split = clitest.out_dir(f"split_{processes}")
-        result = mpirun(processes, "run", clitest.case("dam_break_2d"), "--out", split, *DAM_BREAK, "--threads", "1")
+        result = clitest.mpirun(processes, "run", clitest.case("dam_break_2d"), "--out", split, *DAM_BREAK, "--threads", "1")
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn(f"split over {processes} processes", result.stderr)
 
@@ -138,14 +123,14 @@ class SplitRun(unittest.TestCase):
         self.compare_with_one_process(3)
 
     def test_a_case_with_stages_is_refused_before_it_starts(self):
-        result = mpirun(2, "run", clitest.case("liakopoulos"), "--out", clitest.out_dir("staged"), "--until", "1",
+        result = clitest.mpirun(2, "run", clitest.case("liakopoulos"), "--out", clitest.out_dir("staged"), "--until", "1",
                         timeout=120)
         self.assertNotEqual(result.returncode, 0)
         self.assertIn("cannot be split over processes yet", result.stderr)
 
     def test_a_failing_split_run_says_why_in_run_json(self):
         out = clitest.out_dir("failing")
-        result = mpirun(3, "run", clitest.case("dam_break_2d"), "--out", out, *DAM_BREAK, "--threads", "1",
+        result = clitest.mpirun(3, "run", clitest.case("dam_break_2d"), "--out", out, *DAM_BREAK, "--threads", "1",
                         "--set", "numerics.min_dt=0.001", timeout=120)
         self.assertNotEqual(result.returncode, 0)
         summary = json.loads((out / "run.json").read_text())
