@@ -332,12 +332,6 @@ int run_command(const std::vector<std::string>& args) {
   MeasuredTransport* const meter = nullptr;
 #endif
   const bool root = !split || split->process() == 0;
-  if (split && (spec.stages_size() > 0 || spec.has_initialisation())) {
-    if (root)
-      std::fprintf(stderr, "cascade run: %s: a case with stages or an initialisation stage cannot be split over "
-                   "processes yet (issue 17); run it as one process\n", options.case_path.c_str());
-    return 2;
-  }
   std::FILE* const log = root ? stderr : std::fopen("/dev/null", "w");
   if (!log) return 1;
 

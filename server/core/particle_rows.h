@@ -77,6 +77,17 @@ struct OwnedStepLimit {
   }
 };
 
+// A reduction's term of a particle this process owns, the reduction's identity for the others
+// (copies, whose owners count them).
+template <typename F, typename T>
+struct OwnedTerm {
+  F term;
+  const std::uint32_t* owner;
+  std::uint32_t process;
+  T identity;
+  CASCADE_HD T operator()(std::uint32_t i) const { return owner[i] == process ? term(i) : identity; }
+};
+
 // Runs `pass` on the particles this process owns only (Simulation::launch_owned).
 template <typename F>
 struct OwnedOnly {

@@ -194,18 +194,31 @@ class Simulation final : public Engine {
     local_damping_ = local_damping;
   }
 
+  // Split over processes: of the particles each owns, combined over all (collective).
   Equilibrium equilibrium() const override {
     if (!has_soil_) return {};
     const std::uint32_t water = grid_.water_end;
-    const EquilibriumSums<Real> sums = thrust::transform_reduce(
-        Backend::policy(), thrust::counting_iterator<std::uint32_t>(water),
-        thrust::counting_iterator<std::uint32_t>(std::uint32_t(moving_)),
-        EquilibriumOfParticle<Real, Dim>{raw(soil_materials_), raw(soil_material_), raw(porosity_), raw(saturation_),
-                                         raw(density_), raw(velocity_), raw(unbalanced_acceleration_), sph_.mass,
-                                         sph_.gravity.norm(), water_.rho0},
-        EquilibriumSums<Real>{Real(0), Real(0), Real(0), Real(0)}, CombineEquilibriumSums<Real>());
-    if (!(sums.particles > Real(0))) return {};
-    return {double(sums.max_force) / (double(sums.weight) / double(sums.particles)), double(sums.max_speed)};
+    const EquilibriumOfParticle<Real, Dim> term{raw(soil_materials_), raw(soil_material_), raw(porosity_),
+                                                raw(saturation_), raw(density_), raw(velocity_),
+                                                raw(unbalanced_acceleration_), sph_.mass, sph_.gravity.norm(),
+                                                water_.rho0};
+    const EquilibriumSums<Real> none{Real(0), Real(0), Real(0), Real(0)};
+    const auto first = thrust::counting_iterator<std::uint32_t>(water);
+    const auto last = thrust::counting_iterator<std::uint32_t>(std::uint32_t(moving_));
+    EquilibriumSums<Real> sums =
+        transport_ ? thrust::transform_reduce(Backend::policy(), first, last,
+                                              OwnedTerm<decltype(term), EquilibriumSums<Real>>{term, raw(owner_),
+                                                                                              process(), none},
+                                              none, CombineEquilibriumSums<Real>())
+                   : thrust::transform_reduce(Backend::policy(), first, last, term, none, CombineEquilibriumSums<Real>());
+    double max_force = double(sums.max_force), weight = double(sums.weight), particles = double(sums.particles),
+           max_speed = double(sums.max_speed);
+    if (transport_) {
+      max_force = transport_->maximum(max_force), weight = transport_->sum(weight);
+      particles = transport_->sum(particles), max_speed = transport_->maximum(max_speed);
+    }
+    if (!(particles > 0)) return {};
+    return {max_force / (weight / particles), max_speed};
   }
 
   void zero_velocities() override {
@@ -217,7 +230,31 @@ class Simulation final : public Engine {
     thrust::fill(pore_water_totals_.begin(), pore_water_totals_.end(), 0.0);  // from the clock's start, as the displacement
     if (!has_soil_) return;
     const FieldFrame now = frame();
-    initial_position_ = now.position;
+    initial_position_ = transport_ ? whole_run_positions(now) : now.position;
+  }
+
+  // Split over processes: the positions of the whole run by id (N × 3, as a frame's), from the
+  // particles each process owns in its share's frame `own` (collective).
+  std::vector<double> whole_run_positions(const FieldFrame& own) const {
+    const auto* owner = own.find("process");
+    std::vector<char> message;
+    for (std::size_t k = 0; k < own.size(); ++k) {
+      if (owner->values[k] != double(process())) continue;
+      const char* id = reinterpret_cast<const char*>(&own.id[k]);
+      const char* x = reinterpret_cast<const char*>(&own.position[3 * k]);
+      message.insert(message.end(), id, id + sizeof(std::uint32_t));
+      message.insert(message.end(), x, x + 3 * sizeof(double));
+    }
+    std::vector<double> whole(initial_position_.size(), 0.0);
+    constexpr std::size_t row = sizeof(std::uint32_t) + 3 * sizeof(double);
+    for (const auto& in : transport_->exchange(std::vector<std::vector<char>>(transport_->processes(), message)))
+      for (std::size_t at = 0; at + row <= in.size(); at += row) {
+        std::uint32_t id = 0;
+        std::memcpy(&id, in.data() + at, sizeof id);
+        if (3 * std::size_t(id) + 3 > whole.size()) throw std::logic_error("a process owns an unknown particle");
+        std::memcpy(&whole[3 * std::size_t(id)], in.data() + at + sizeof id, 3 * sizeof(double));
+      }
+    return whole;
   }
 
   // Split over processes: the rows of the particles this process owns (DistributedEngine puts
@@ -564,6 +601,9 @@ class Simulation final : public Engine {
     cells_.reorder(ghost_, start_position_);
     cells_.reorder(density_, start_density_);
     cells_.reorder(water_density_, start_density_);
+    // Recomputed by every evaluation, but carried by a checkpoint (state()): what a frame taken
+    // right after a restore in another order (a split run's) shows.
+    cells_.reorder(pressure_, start_density_);
     cells_.reorder(phase_, scratch_phase_);
     cells_.reorder(id_, scratch_index_);
     if (transport_) cells_.reorder(owner_, scratch_index_);
@@ -578,6 +618,8 @@ class Simulation final : public Engine {
       cells_.reorder(seepage_, start_position_);
       cells_.reorder(skeleton_acceleration_, start_position_);
       cells_.reorder(effective_stress_, start_stress_);
+      cells_.reorder(free_surface_, dummy_flags_);  // carried by a checkpoint, as the pressure
+      cells_.reorder(saturation_, start_density_);
       // The dummies' soil side is recomputed at every evaluation, for the dummy block only (at
       // least one slot, so that a vectorised loop may load it unused).
       const std::size_t dummies = std::max<std::size_t>(cells_.active() - cells_.moving(), 1);

@@ -234,11 +234,6 @@ std::vector<std::size_t> DistributedEngine::share_sizes() const {
   return sizes;
 }
 
-void DistributedEngine::set_relaxation(double local_damping) {
-  if (local_damping != 0) refuse("a geostatic stage");
-  share_->set_relaxation(0);
-}
-
 // Each process sends every other the particles it owns (its share's frame, field "process"), and
 // each puts them together by id: the whole run's frame, as one process would give it.
 FieldFrame DistributedEngine::frame() const {

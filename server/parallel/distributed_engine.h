@@ -42,7 +42,7 @@ class DistributedEngine final : public Engine {
   const char* device_name() const override { return share_->device_name(); }
   void set_forcing(const HydraulicForcing& forcing) override { share_->set_forcing(forcing); }
   HydraulicForcing forcing() const override { return share_->forcing(); }
-  void restart_clock() override { refuse("an initialisation stage"); }
+  void restart_clock() override { share_->restart_clock(); }
   // The whole run's state, on every process, its particles in id order: what one process's
   // engine restores, and what a split run over any number of processes restores.
   EngineState state() const override;
@@ -51,8 +51,9 @@ class DistributedEngine final : public Engine {
   void restore(const EngineState& state) override;
   std::unique_ptr<Engine> clone() const override { refuse("a fork"); }
   PoreWaterAccount pore_water_account() const override;
-  void set_relaxation(double local_damping) override;
-  Equilibrium equilibrium() const override { refuse("a geostatic stage"); }
+  void set_relaxation(double local_damping) override { share_->set_relaxation(local_damping); }
+  Equilibrium equilibrium() const override { return share_->equilibrium(); }
+  void refresh_seepage() override { share_->refresh_seepage(); }
   void zero_velocities() override { share_->zero_velocities(); }
   LoadBalance load_balance() const override { return share_->load_balance(); }  // the same on every process
 

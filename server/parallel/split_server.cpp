@@ -36,6 +36,9 @@ enum class Call : std::uint32_t {
   restore,
   zero_velocities,
   set_relaxation,
+  restart_clock,
+  equilibrium,
+  refresh_seepage,
   end,
 };
 
@@ -80,8 +83,6 @@ void broadcast(MPI_Comm communicator, std::uint32_t& kind, std::vector<char>& by
   }
 }
 
-bool staged(const v1::ScenarioSpec& spec) { return spec.stages_size() > 0 || spec.has_initialisation(); }
-
 // Process 0's engine: its share of the run, and the others told of every call they must make too.
 class LeaderEngine final : public Engine {
  public:
@@ -119,7 +120,7 @@ class LeaderEngine final : public Engine {
     engine_->set_forcing(forcing);
   }
   HydraulicForcing forcing() const override { return engine_->forcing(); }
-  void restart_clock() override { engine_->restart_clock(); }  // refused by the split engine, here alone
+  void restart_clock() override { call(Call::restart_clock), engine_->restart_clock(); }
   EngineState state() const override { return call(Call::state), engine_->state(); }
   void restore(const EngineState& state) override { call(Call::restore, state_message(state)), engine_->restore(state); }
   std::unique_ptr<Engine> clone() const override { return engine_->clone(); }  // refused, here alone
@@ -127,10 +128,12 @@ class LeaderEngine final : public Engine {
     return call(Call::pore_water_account), engine_->pore_water_account();
   }
   void set_relaxation(double local_damping) override {
-    if (local_damping != 0) engine_->set_relaxation(local_damping);  // refused, here alone
-    call(Call::set_relaxation), engine_->set_relaxation(0);
+    std::vector<char> bytes(sizeof local_damping);
+    std::memcpy(bytes.data(), &local_damping, sizeof local_damping);
+    call(Call::set_relaxation, bytes), engine_->set_relaxation(local_damping);
   }
-  Equilibrium equilibrium() const override { return engine_->equilibrium(); }  // refused, here alone
+  Equilibrium equilibrium() const override { return call(Call::equilibrium), engine_->equilibrium(); }
+  void refresh_seepage() override { call(Call::refresh_seepage), engine_->refresh_seepage(); }
   void zero_velocities() override { call(Call::zero_velocities), engine_->zero_velocities(); }
   LoadBalance load_balance() const override { return engine_->load_balance(); }
 
@@ -184,7 +187,16 @@ void follow_engine(const std::string& case_bytes, Precision precision, Device de
         case Call::state: engine->state(); break;
         case Call::restore: engine->restore(state_from_message(bytes)); break;
         case Call::zero_velocities: engine->zero_velocities(); break;
-        case Call::set_relaxation: engine->set_relaxation(0); break;
+        case Call::set_relaxation: {
+          double local_damping = 0;
+          if (bytes.size() != sizeof local_damping) throw std::logic_error("a damping message of the wrong size");
+          std::memcpy(&local_damping, bytes.data(), sizeof local_damping);
+          engine->set_relaxation(local_damping);
+          break;
+        }
+        case Call::restart_clock: engine->restart_clock(); break;
+        case Call::equilibrium: engine->equilibrium(); break;
+        case Call::refresh_seepage: engine->refresh_seepage(); break;
         case Call::end: break;
       }
     } catch (const std::exception&) {
@@ -199,11 +211,7 @@ void follow_engine(const std::string& case_bytes, Precision precision, Device de
 SplitEngineFactory SplitEngineLauncher::factory(const v1::ScenarioSpec& spec) {
   std::string case_bytes;
   spec.SerializeToString(&case_bytes);
-  const bool refused = staged(spec);
-  return [this, case_bytes, refused](const EngineConfig& config, const HostParticles& whole) -> std::unique_ptr<Engine> {
-    if (refused)
-      throw std::invalid_argument("a case with stages or an initialisation stage cannot be split over processes yet "
-                                  "(issue 17); run cascade-server as one process for it");
+  return [this, case_bytes](const EngineConfig& config, const HostParticles& whole) -> std::unique_ptr<Engine> {
     MPI_Comm communicator = MPI_COMM_NULL;
     {
       std::lock_guard lock(world_);

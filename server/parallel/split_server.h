@@ -22,8 +22,8 @@ using SplitEngineFactory = std::function<std::unique_ptr<Engine>(const EngineCon
 class SplitEngineLauncher {
  public:
   // The factory of a session's engines: each is split over all processes, which build their
-  // shares from `spec` (defaults applied). A case with stages or an initialisation stage is
-  // refused (not split yet).
+  // shares from `spec` (defaults applied). The stages above it (server/solver) run on process 0
+  // alone and reach the others through the engine's calls (a stage hand-over is a restore).
   SplitEngineFactory factory(const v1::ScenarioSpec& spec);
   // Ends follow_split_engines on the other processes: after every engine is destroyed.
   void finish();

@@ -10,6 +10,7 @@ query files, checkpoints and journals read back. Registered only in builds with 
   1e-7 of its range: sums in another order, tests/parallel/test_split_run.cpp).
 - A checkpoint written by the split server at 3 processes restores on a server at 2 processes and
   on one process (a new server on the same data dir) and goes on as the run that never stopped.
+- A case with an implicit pore-water stage: the same fields at 3 processes as in one.
 - The journal of a steered run on the split server (the rain changed at step 40 of the rain column)
   replays in `cascade run --replay` as one process: the change at the same step, the same event,
   the same fields to round-off.
@@ -121,6 +122,18 @@ class SplitServer(unittest.TestCase):
             self.assertEqual(int(last.attrs["step"]), step)
             replay = {k: last[k][()] for k in end if k in last}
         self.assert_round_off({k: end[k] for k in replay}, replay, 0.1, "the replay in one process")
+
+
+    def test_a_staged_case_on_the_split_server_as_one_process(self):
+        # The implicit pore-water stage runs on process 0 above the split engine; its states reach
+        # the other processes as restores.
+        frames = {}
+        for processes in (3, None):
+            with clitest.Server(f"split_server_staged_{processes or 1}", processes=processes) as server:
+                json_of(server.cli("create", clitest.fixture("staged_column"), "--id", "soak", "--json"))
+                self.assertEqual(server.cli("run-until", "soak", "100").returncode, 0)
+                frames[processes], _ = query(server, "soak", f"staged_{processes or 1}", SOIL)
+        self.assert_round_off(frames[3], frames[None], 0.05, "the staged column at 3 processes")
 
 
 def end_time(out_name):
