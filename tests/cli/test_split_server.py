@@ -1,6 +1,6 @@
 """`mpirun -np N cascade-server` (issue 17): a server split over processes answers as one process's.
 
-Real processes: cascade-server under mpirun at 3 processes (one thread each, more processes than
+Real processes: cascade-server under mpirun at 2 to 4 processes (one thread each, more processes than
 cores with --oversubscribe) and alone, driven by the `cascade` client over loopback gRPC; their
 query files, checkpoints and journals read back. Registered only in builds with CASCADE_MPI
 (tests/CMakeLists.txt).
@@ -11,9 +11,9 @@ query files, checkpoints and journals read back. Registered only in builds with 
 - A checkpoint written by the split server at 3 processes restores on a server at 2 processes and
   on one process (a new server on the same data dir) and goes on as the run that never stopped.
 - A case with an implicit pore-water stage: the same fields at 3 processes as in one.
-- The journal of a steered run on the split server (the rain changed at step 40 of the rain column)
-  replays in `cascade run --replay` as one process: the change at the same step, the same event,
-  the same fields to round-off.
+- The journal of a steered run on the split server at 4 processes (the rain changed at step 40 of
+  the rain column) replays in `cascade run --replay` as one process and at 2: the change at the
+  same step, the same event, the same fields to round-off.
 """
 
 import json
@@ -94,8 +94,8 @@ class SplitServer(unittest.TestCase):
                 self.assertEqual(restored_step, step + STEPS_ON)
             self.assert_round_off(restored_on, alone_on, DP, f"restored at {processes or 1} processes")
 
-    def test_journal_of_a_steered_split_run_replays_in_one_process(self):
-        with clitest.Server("split_server_steered", processes=3) as split:
+    def test_journal_of_a_steered_split_run_replays_at_any_count(self):
+        with clitest.Server("split_server_steered", processes=4) as split:
             name = json_of(split.cli("create", clitest.fixture("rain_column"), "--id", "rain", "--json"))["name"]
             self.assertEqual(split.cli("step", name, "40").returncode, 0)
             self.assertEqual(split.cli("set", name, "rainfall.intensity=4e-6").returncode, 0)
@@ -108,20 +108,23 @@ class SplitServer(unittest.TestCase):
         self.assertEqual(len(changes), 1, events)
         self.assertEqual(int(changes[0]["step"]), 40)
 
-        out = clitest.out_dir("split_server_replay")
-        p = clitest.run("run", clitest.fixture("rain_column"), "--out", out, "--threads", "1", "--replay", journal,
-                        "--until", repr(end_time(out_name="steered_split")), timeout=120)
-        self.assertEqual(p.returncode, 0, p.stderr)
-        summary = json.loads((out / "run.json").read_text())
-        self.assertEqual(summary["steps"], step)
-        replayed = [e for e in summary["events"] if e["kind"] == "forcing"]
-        self.assertEqual([int(e["step"]) for e in replayed], [40], summary["events"])
-        h5py = clitest.import_h5py()
-        with h5py.File(out / "fields.h5") as f:
-            last = f["frames"][sorted(f["frames"].keys())[-1]]
-            self.assertEqual(int(last.attrs["step"]), step)
-            replay = {k: last[k][()] for k in end if k in last}
-        self.assert_round_off({k: end[k] for k in replay}, replay, 0.1, "the replay in one process")
+        replay_args = ("run", clitest.fixture("rain_column"), "--threads", "1", "--replay", journal,
+                       "--until", repr(end_time(out_name="steered_split")))
+        for processes in (None, 2):  # one process, and 2 under mpirun
+            out = clitest.out_dir(f"split_server_replay_{processes or 1}")
+            p = (clitest.mpirun(processes, *replay_args, "--out", out, timeout=120) if processes
+                 else clitest.run(*replay_args, "--out", out, timeout=120))
+            self.assertEqual(p.returncode, 0, p.stderr)
+            summary = json.loads((out / "run.json").read_text())
+            self.assertEqual(summary["steps"], step)
+            replayed = [e for e in summary["events"] if e["kind"] == "forcing"]
+            self.assertEqual([int(e["step"]) for e in replayed], [40], summary["events"])
+            h5py = clitest.import_h5py()
+            with h5py.File(out / "fields.h5") as f:
+                last = f["frames"][sorted(f["frames"].keys())[-1]]
+                self.assertEqual(int(last.attrs["step"]), step)
+                replay = {k: last[k][()] for k in end if k in last}
+            self.assert_round_off({k: end[k] for k in replay}, replay, 0.1, f"the replay at {processes or 1} processes")
 
 
     def test_a_staged_case_on_the_split_server_as_one_process(self):
