@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cstdint>
 #include <cstring>
+#include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -86,8 +88,10 @@ void broadcast(MPI_Comm communicator, std::uint32_t& kind, std::vector<char>& by
 // Process 0's engine: its share of the run, and the others told of every call they must make too.
 class LeaderEngine final : public Engine {
  public:
-  LeaderEngine(const EngineConfig& config, const HostParticles& whole, MPI_Comm communicator)
-      : communicator_(communicator), transport_(communicator) {
+  // `sibling` makes another engine of the same case, split the same way (a fork's).
+  LeaderEngine(const EngineConfig& config, const HostParticles& whole, MPI_Comm communicator,
+               std::function<std::unique_ptr<Engine>()> sibling)
+      : communicator_(communicator), transport_(communicator), sibling_(std::move(sibling)) {
     try {
       engine_ = std::make_unique<DistributedEngine>(config, whole, transport_);
     } catch (...) {  // the others met the same (the same case, the same rule) and freed theirs
@@ -123,7 +127,14 @@ class LeaderEngine final : public Engine {
   void restart_clock() override { call(Call::restart_clock), engine_->restart_clock(); }
   EngineState state() const override { return call(Call::state), engine_->state(); }
   void restore(const EngineState& state) override { call(Call::restore, state_message(state)), engine_->restore(state); }
-  std::unique_ptr<Engine> clone() const override { return engine_->clone(); }  // refused, here alone
+  // A fork: a sibling engine that restores this one's state (to round-off what this one would
+  // do: its shares are cut anew).
+  std::unique_ptr<Engine> clone() const override {
+    const EngineState now = state();
+    std::unique_ptr<Engine> copy = sibling_();
+    copy->restore(now);
+    return copy;
+  }
   PoreWaterAccount pore_water_account() const override {
     return call(Call::pore_water_account), engine_->pore_water_account();
   }
@@ -145,6 +156,7 @@ class LeaderEngine final : public Engine {
 
   MPI_Comm communicator_;
   MpiTransport transport_;
+  std::function<std::unique_ptr<Engine>()> sibling_;
   std::unique_ptr<DistributedEngine> engine_;
 };
 
@@ -211,17 +223,23 @@ void follow_engine(const std::string& case_bytes, Precision precision, Device de
 SplitEngineFactory SplitEngineLauncher::factory(const v1::ScenarioSpec& spec) {
   std::string case_bytes;
   spec.SerializeToString(&case_bytes);
-  return [this, case_bytes](const EngineConfig& config, const HostParticles& whole) -> std::unique_ptr<Engine> {
-    MPI_Comm communicator = MPI_COMM_NULL;
-    {
-      std::lock_guard lock(world_);
-      auto kind = std::uint32_t(Announcement::engine);
-      std::vector<char> bytes(case_bytes.begin(), case_bytes.end());
-      broadcast(MPI_COMM_WORLD, kind, bytes);
-      check(MPI_Comm_dup(MPI_COMM_WORLD, &communicator), "MPI_Comm_dup");
-    }
-    return std::make_unique<LeaderEngine>(config, whole, communicator);
+  return [this, case_bytes](const EngineConfig& config, const HostParticles& whole) {
+    return launch(case_bytes, config, std::make_shared<const HostParticles>(whole));
   };
+}
+
+std::unique_ptr<Engine> SplitEngineLauncher::launch(const std::string& case_bytes, const EngineConfig& config,
+                                                    std::shared_ptr<const HostParticles> whole) {
+  MPI_Comm communicator = MPI_COMM_NULL;
+  {
+    std::lock_guard lock(world_);
+    auto kind = std::uint32_t(Announcement::engine);
+    std::vector<char> bytes(case_bytes.begin(), case_bytes.end());
+    broadcast(MPI_COMM_WORLD, kind, bytes);
+    check(MPI_Comm_dup(MPI_COMM_WORLD, &communicator), "MPI_Comm_dup");
+  }
+  return std::make_unique<LeaderEngine>(config, *whole, communicator,
+                                        [this, case_bytes, config, whole] { return launch(case_bytes, config, whole); });
 }
 
 void SplitEngineLauncher::finish() {

@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <string>
 
 #include "cascade/v1/scenario.pb.h"
 #include "server/core/engine.h"
@@ -27,6 +28,12 @@ class SplitEngineLauncher {
   SplitEngineFactory factory(const v1::ScenarioSpec& spec);
   // Ends follow_split_engines on the other processes: after every engine is destroyed.
   void finish();
+
+  // A new engine of the case (`case_bytes`, its ScenarioSpec serialised), split over all
+  // processes: announced to the others, with a communicator of its own. A fork's engine is one
+  // such, restored from its parent's state.
+  std::unique_ptr<Engine> launch(const std::string& case_bytes, const EngineConfig& config,
+                                 std::shared_ptr<const HostParticles> whole);
 
  private:
   std::mutex world_;  // the announcements and the communicators they make: one order on every process

@@ -11,6 +11,7 @@ query files, checkpoints and journals read back. Registered only in builds with 
 - A checkpoint written by the split server at 3 processes restores on a server at 2 processes and
   on one process (a new server on the same data dir) and goes on as the run that never stopped.
 - A case with an implicit pore-water stage: the same fields at 3 processes as in one.
+- A fork of a split simulation, its rain changed, and its parent: both as on one process.
 - The journal of a steered run on the split server at 4 processes (the rain changed at step 40 of
   the rain column) replays in `cascade run --replay` as one process and at 2: the change at the
   same step, the same event, the same fields to round-off.
@@ -137,6 +138,26 @@ class SplitServer(unittest.TestCase):
                 self.assertEqual(server.cli("run-until", "soak", "100").returncode, 0)
                 frames[processes], _ = query(server, "soak", f"staged_{processes or 1}", SOIL)
         self.assert_round_off(frames[3], frames[None], 0.05, "the staged column at 3 processes")
+
+
+    def test_a_fork_of_a_split_simulation_as_one_process(self):
+        # The fork is an engine of its own over all processes, restored from its parent's state.
+        frames = {}
+        for processes in (3, None):
+            with clitest.Server(f"split_server_fork_{processes or 1}", processes=processes) as server:
+                json_of(server.cli("create", clitest.fixture("rain_column"), "--id", "parent", "--json"))
+                self.assertEqual(server.cli("step", "parent", "40").returncode, 0)
+                json_of(server.cli("fork", "parent", "--id", "branch", "--json"))
+                self.assertEqual(server.cli("set", "branch", "rainfall.intensity=4e-6").returncode, 0)
+                for name in ("parent", "branch"):
+                    self.assertEqual(server.cli("step", name, "60").returncode, 0)
+                    frames[processes, name], step = query(server, name, f"fork_{name}_{processes or 1}", SOIL)
+                    self.assertEqual(step, 100)
+        for name in ("parent", "branch"):
+            self.assert_round_off(frames[3, name], frames[None, name], 0.1, f"the {name} at 3 processes")
+        # The fork's rain changed it: the comparison can fail.
+        self.assertNotEqual(frames[None, "parent"]["pore_pressure"].tobytes(),
+                            frames[None, "branch"]["pore_pressure"].tobytes())
 
 
 def end_time(out_name):
