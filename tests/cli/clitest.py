@@ -209,6 +209,18 @@ class Server:
         return run(*args, "--server", self.address, *extra)
 
 
+def query_frame(server, name, out_name, fields):
+    """`cascade query NAME FIELDS --out WORK_DIR/OUT_NAME.h5` on `server`: (every dataset of the
+    frame by name, as numpy arrays; the frame's step)."""
+    h5py = import_h5py()
+    out = WORK_DIR / f"{out_name}.h5"
+    p = server.cli("query", name, *fields, "--out", out)
+    assert p.returncode == 0, p.stderr
+    with h5py.File(out) as f:
+        frame = f["frames"]["000000"]
+        return {k: frame[k][()] for k in frame.keys()}, int(frame.attrs["step"])
+
+
 def png_pixels(data):
     """An 8-bit RGB PNG (as render/png_encoder.cpp writes it) → (width, height, rows of bytes)."""
     import struct

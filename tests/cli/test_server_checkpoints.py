@@ -13,13 +13,7 @@ FIELDS = ("pore_pressure", "saturation", "seepage", "porosity", "velocity", "den
 
 def query(server, name, out_name):
     """The fields (and positions, ids) at the simulation's current step, as numpy arrays."""
-    h5py = clitest.import_h5py()
-    out = clitest.WORK_DIR / f"{out_name}.h5"
-    p = server.cli("query", name, *FIELDS, "--out", out)
-    assert p.returncode == 0, p.stderr
-    with h5py.File(out) as f:
-        frame = f["frames"]["000000"]
-        return {k: frame[k][()] for k in ("id", "position", *FIELDS)}, frame.attrs["step"]
+    return clitest.query_frame(server, name, out_name, FIELDS)
 
 
 class CheckpointTest(unittest.TestCase):

@@ -29,13 +29,7 @@ SOIL = ("pore_pressure", "saturation", "seepage", "porosity", "velocity", "densi
 
 
 def query(server, name, out_name, fields=WATER):
-    h5py = clitest.import_h5py()
-    out = clitest.WORK_DIR / f"{out_name}.h5"
-    p = server.cli("query", name, *fields, "--out", out)
-    assert p.returncode == 0, p.stderr
-    with h5py.File(out) as f:
-        frame = f["frames"]["000000"]
-        return {k: frame[k][()] for k in frame.keys()}, int(frame.attrs["step"])
+    return clitest.query_frame(server, name, out_name, fields)
 
 
 def json_of(p):
@@ -138,7 +132,6 @@ class SplitServer(unittest.TestCase):
                 self.assertEqual(server.cli("run-until", "soak", "100").returncode, 0)
                 frames[processes], _ = query(server, "soak", f"staged_{processes or 1}", SOIL)
         self.assert_round_off(frames[3], frames[None], 0.05, "the staged column at 3 processes")
-
 
     def test_a_fork_of_a_split_simulation_as_one_process(self):
         # The fork is an engine of its own over all processes, restored from its parent's state.

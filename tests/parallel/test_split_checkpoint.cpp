@@ -14,7 +14,6 @@
 // pore-water account (the volumes that entered since the start) within 1e-9 of its size.
 #include <gtest/gtest.h>
 #include <mpi.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -27,6 +26,8 @@
 #include "server/io/checkpoint_file.h"
 #include "server/parallel/distributed_engine.h"
 #include "server/parallel/mpi_transport.h"
+#include "tests/parallel/frame_difference.h"
+#include "tests/parallel/mpi_test_main.h"
 #include "tests/validation/case_run.h"
 #include "tests/validation/validation_table.h"
 
@@ -34,41 +35,6 @@ namespace cascade {
 namespace {
 
 MpiTransport* world = nullptr;
-
-// Largest differences of `restored` from `reference`: positions in dp, fields over their ranges.
-struct Difference {
-  double position = 0;
-  double field = 0;
-  std::string worst_field;
-  void widen(const Difference& d) {
-    position = std::max(position, d.position);
-    if (d.field >= field) field = d.field, worst_field = d.worst_field;
-  }
-};
-
-Difference difference(const FieldFrame& restored, const FieldFrame& reference, double dp) {
-  Difference d;
-  EXPECT_EQ(restored.size(), reference.size());
-  if (restored.size() != reference.size()) return {1e300, 1e300, "particle count"};
-  for (std::size_t i = 0; i < reference.position.size(); ++i)
-    d.position = std::max(d.position, std::abs(restored.position[i] - reference.position[i]) / dp);
-  for (const auto& field : reference.fields) {
-    const auto* other = restored.find(field.name);
-    if (!other) {
-      ADD_FAILURE() << "the restored run's frame has no field " << field.name;
-      continue;
-    }
-    const auto [low, high] = std::minmax_element(field.values.begin(), field.values.end());
-    const double range = field.values.empty() ? 0.0 : *high - *low;
-    double worst = 0;
-    for (std::size_t k = 0; k < field.values.size(); ++k) {
-      const double delta = std::abs(other->values[k] - field.values[k]);
-      worst = std::max(worst, range > 0 ? delta / range : (delta > 0 ? 1.0 : 0.0));
-    }
-    if (worst >= d.field) d.field = worst, d.worst_field = field.name;
-  }
-  return d;
-}
 
 // The same bytes on every process: process 0's.
 std::vector<char> from_process_0(const std::vector<char>& message) {
@@ -122,7 +88,7 @@ void checkpoint_restores_at_any_count(const std::string& case_file, const std::s
   }
   ASSERT_GT(steps[1], steps[0]);
   const double dp = alone.config.dp;
-  Difference worst;
+  testing::FrameDifference worst;
   auto compare = [&](const Engine& restored, const std::string& how) {
     const FieldFrame f = restored.frame();
     const PoreWaterAccount account = restored.pore_water_account();
@@ -137,7 +103,7 @@ void checkpoint_restores_at_any_count(const std::string& case_file, const std::s
         << how;
     EXPECT_EQ(restored.step_count(), steps[1]);
     EXPECT_NEAR(f.time, reference.time, 1e-12 * reference.time) << how;
-    const Difference d = difference(f, reference, dp);
+    const testing::FrameDifference d = testing::frame_difference(f, reference, dp);
     std::printf("%s: %s: largest |Δx| %.3g dp, |Δ field| %.3g of its range (%s); rain in %.6g (%.6g never stopped)\n",
                 case_file.c_str(), how.c_str(), d.position, d.field, d.worst_field.c_str(), account.rain,
                 reference_account.rain);
@@ -209,16 +175,4 @@ TEST(SplitCheckpoint, InfiltrationColumnRestoresAtAnyProcessCount) {
 }  // namespace
 }  // namespace cascade
 
-// MPI around Google Test, as test_split_run.cpp.
-int main(int argc, char** argv) {
-  cascade::MpiSession mpi(&argc, &argv);
-  cascade::MpiTransport transport;
-  cascade::world = &transport;
-  omp_set_num_threads(1);  // the processes share the cores
-  ::testing::InitGoogleTest(&argc, argv);
-  if (transport.process() != 0) {
-    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  return RUN_ALL_TESTS();
-}
+int main(int argc, char** argv) { return cascade::testing::mpi_test_main(argc, argv, cascade::world); }

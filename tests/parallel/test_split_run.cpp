@@ -19,7 +19,6 @@
 //    (DistributedEngine::frame throws otherwise), the counts of water and soil those of the case,
 //    none lost.
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <array>
@@ -32,6 +31,8 @@
 
 #include "server/parallel/distributed_engine.h"
 #include "server/parallel/mpi_transport.h"
+#include "tests/parallel/frame_difference.h"
+#include "tests/parallel/mpi_test_main.h"
 #include "tests/validation/case_run.h"
 #include "tests/validation/validation_table.h"
 
@@ -39,38 +40,6 @@ namespace cascade {
 namespace {
 
 MpiTransport* transport = nullptr;
-
-// The largest difference between the split run's frame and one process's: of the positions in
-// units of dp, and of every field of one process's frame over that field's range there.
-struct Difference {
-  double position = 0;
-  double field = 0;
-  std::string worst_field;
-};
-
-Difference largest_difference(const FieldFrame& split, const FieldFrame& alone, double dp) {
-  EXPECT_EQ(split.size(), alone.size());
-  Difference d;
-  for (std::size_t i = 0; i < alone.size(); ++i)
-    for (int c = 0; c < 3; ++c)
-      d.position = std::max(d.position, std::abs(split.position[3 * i + c] - alone.position[3 * i + c]) / dp);
-  for (const auto& field : alone.fields) {
-    const auto* other = split.find(field.name);
-    if (!other) {
-      ADD_FAILURE() << "the split run's frame has no field " << field.name;
-      continue;
-    }
-    const auto [low, high] = std::minmax_element(field.values.begin(), field.values.end());
-    const double range = field.values.empty() ? 0.0 : *high - *low;
-    double worst = 0;
-    for (std::size_t k = 0; k < field.values.size(); ++k) {
-      const double delta = std::abs(other->values[k] - field.values[k]);
-      worst = std::max(worst, range > 0 ? delta / range : (delta > 0 ? 1.0 : 0.0));
-    }
-    if (worst >= d.field) d.field = worst, d.worst_field = field.name;
-  }
-  return d;
-}
 
 // On process 0, which holds the one-process frames: the figure in the validation table, asserted.
 void validate(const testing::Figure& figure) { CASCADE_VALIDATE(figure); }
@@ -127,7 +96,7 @@ void compare_with_one_process(const std::string& case_file, const std::string& c
   const HostParticles& whole = alone.set.particles;
   const double mass = alone.config.water_density * std::pow(alone.config.dp, alone.config.dimensions);
   const bool compare = transport->process() == 0;  // the one-process frames are there
-  Difference worst;
+  testing::FrameDifference worst;
   double worst_momentum = 0, worst_front = 0;
   int round_off_frames = 0;
   ASSERT_GE(one.steps.size(), 4u);
@@ -146,7 +115,7 @@ void compare_with_one_process(const std::string& case_file, const std::string& c
       };
       worst_front = std::max(worst_front, std::abs(front(f) - front(reference)) / length);
     }
-    const Difference d = largest_difference(f, reference, alone.config.dp);
+    const testing::FrameDifference d = testing::frame_difference(f, reference, alone.config.dp);
     const LoadBalance balance = split.load_balance();
     std::printf("%s, %d processes, step %llu (t = %.4g s): largest |Δx| %.3g dp, |Δ field| %.3g of its range (%s); "
                 "process 0 holds %zu of %zu particles; imbalance %.3f (largest %.3f), %zu repartitions\n",
@@ -229,17 +198,4 @@ TEST(SplitRun, SubmergedLayerAsInOneProcess) {
 }  // namespace
 }  // namespace cascade
 
-// MPI around Google Test: every process runs every test; only process 0 prints gtest's report,
-// and a failure on any process fails its exit code, which mpirun returns.
-int main(int argc, char** argv) {
-  cascade::MpiSession mpi(&argc, &argv);
-  cascade::MpiTransport transport;
-  cascade::transport = &transport;
-  omp_set_num_threads(1);  // the processes share the cores
-  ::testing::InitGoogleTest(&argc, argv);
-  if (transport.process() != 0) {
-    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  return RUN_ALL_TESTS();
-}
+int main(int argc, char** argv) { return cascade::testing::mpi_test_main(argc, argv, cascade::transport); }
