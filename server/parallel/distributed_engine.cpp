@@ -236,7 +236,11 @@ std::vector<std::size_t> DistributedEngine::share_sizes() const {
 
 // Each process sends every other the particles it owns (its share's frame, field "process"), and
 // each puts them together by id: the whole run's frame, as one process would give it.
-FieldFrame DistributedEngine::frame() const {
+FieldFrame DistributedEngine::frame() const { return gather_frame(true); }
+
+FieldFrame DistributedEngine::frame_at_process_0() const { return gather_frame(false); }
+
+FieldFrame DistributedEngine::gather_frame(bool everywhere) const {
   const FieldFrame own = share_->frame();
   const auto* process = own.find("process");
   if (!process) throw std::logic_error("a share's frame has no process field");
@@ -257,7 +261,11 @@ FieldFrame DistributedEngine::frame() const {
     for (const auto& field : own.fields)
       put(message, &field.values[std::size_t(k) * field.components], std::size_t(field.components));
   }
-  const auto received = transport_.exchange(std::vector<std::vector<char>>(transport_.processes(), message));
+  std::vector<std::vector<char>> send(transport_.processes());
+  for (int r = 0; r < transport_.processes(); ++r)
+    if (everywhere || r == 0) send[r] = message;
+  const auto received = transport_.exchange(send);
+  if (!everywhere && me != 0) return {};
 
   FieldFrame whole;
   whole.time = own.time;

@@ -39,6 +39,9 @@ class DistributedEngine final : public Engine {
   std::size_t lost_particles() const override;
   std::size_t device_bytes() const override;
   FieldFrame frame() const override;  // the whole run's, on every process
+  // The whole run's on process 0, an empty frame on the others (what a split server's other
+  // processes take part in: they show no frame).
+  FieldFrame frame_at_process_0() const;
   const char* device_name() const override { return share_->device_name(); }
   void set_forcing(const HydraulicForcing& forcing) override { share_->set_forcing(forcing); }
   HydraulicForcing forcing() const override { return share_->forcing(); }
@@ -64,6 +67,7 @@ class DistributedEngine final : public Engine {
  private:
   [[noreturn]] static void refuse(const char* what);
   std::unique_ptr<Engine> start_share(const HostParticles& whole, const EngineState* checkpoint);
+  FieldFrame gather_frame(bool everywhere) const;
 
   EngineConfig config_;
   Transport& transport_;

@@ -115,7 +115,7 @@ class LeaderEngine final : public Engine {
   std::size_t particle_count() const override { return engine_->particle_count(); }
   std::size_t lost_particles() const override { return call(Call::lost_particles), engine_->lost_particles(); }
   std::size_t device_bytes() const override { return call(Call::device_bytes), engine_->device_bytes(); }
-  FieldFrame frame() const override { return call(Call::frame), engine_->frame(); }
+  FieldFrame frame() const override { return call(Call::frame), engine_->frame_at_process_0(); }
   const char* device_name() const override { return engine_->device_name(); }
   void set_forcing(const HydraulicForcing& forcing) override {
     std::vector<char> bytes(sizeof forcing);
@@ -192,7 +192,7 @@ void follow_engine(const std::string& case_bytes, Precision precision, Device de
           engine->set_forcing(forcing);
           break;
         }
-        case Call::frame: engine->frame(); break;
+        case Call::frame: engine->frame_at_process_0(); break;
         case Call::lost_particles: engine->lost_particles(); break;
         case Call::device_bytes: engine->device_bytes(); break;
         case Call::pore_water_account: engine->pore_water_account(); break;
