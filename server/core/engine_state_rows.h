@@ -16,7 +16,7 @@ namespace cascade {
 
 // Components per particle of an array of a state with `particles` particles.
 template <typename T>
-std::size_t components_of(const std::vector<T>& values, std::size_t particles, const std::string& name) {
+std::size_t row_width(const std::vector<T>& values, std::size_t particles, const std::string& name) {
   if (particles == 0 && values.empty()) return 0;
   if (particles == 0 || values.size() % particles != 0)
     throw std::invalid_argument("the state's array '" + name + "' is not whole rows of its particles");
@@ -29,7 +29,7 @@ inline EngineState state_rows(const EngineState& state, const std::vector<std::s
   part.particles = rows.size();
   auto pick = [&](auto& arrays_out, const auto& arrays_in) {
     for (const auto& [name, values] : arrays_in) {
-      const std::size_t c = components_of(values, state.particles, name);
+      const std::size_t c = row_width(values, state.particles, name);
       auto& out = arrays_out[name];
       out.clear();
       out.reserve(rows.size() * c);

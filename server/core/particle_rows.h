@@ -88,6 +88,12 @@ struct OwnedTerm {
   CASCADE_HD T operator()(std::uint32_t i) const { return owner[i] == process ? term(i) : identity; }
 };
 
+// The entries of a particle's neighbour list: the work of its interaction passes (LoadBalance).
+struct ListLength {
+  const std::uint32_t* count;
+  CASCADE_HD std::uint64_t operator()(std::uint32_t i) const { return count[i]; }
+};
+
 // Runs `pass` on the particles this process owns only (Simulation::launch_owned).
 template <typename F>
 struct OwnedOnly {

@@ -8,6 +8,7 @@
 #include <thrust/copy.h>
 #include <thrust/fill.h>
 #include <thrust/for_each.h>
+#include <thrust/functional.h>
 #include <thrust/host_vector.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/reduce.h>
@@ -1066,16 +1067,17 @@ class Simulation final : public Engine {
       halo_receive_[r] = Vector<std::uint32_t>(receive[r].begin(), receive[r].end());
     }
     mark_near_particles(position, owner);
-    measure_balance(owner);
+    measure_balance();
   }
 
   // The work of every process at this rebuild (LoadBalance, partition.h): the list entries of the
-  // particles it owns.
-  void measure_balance(const thrust::host_vector<std::uint32_t>& owner) {
-    const thrust::host_vector<std::uint32_t> count(neighbours_.counts().begin(), neighbours_.counts().end());
-    double work = 0;
-    for (std::size_t k = 0; k < count.size(); ++k)
-      if (owner[k] == process()) work += double(count[k]);
+  // particles it owns, summed on the backend.
+  void measure_balance() {
+    const double work = double(thrust::transform_reduce(
+        Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
+        thrust::counting_iterator<std::uint32_t>(std::uint32_t(moving_)),
+        OwnedTerm<ListLength, std::uint64_t>{ListLength{raw(neighbours_.counts())}, raw(owner_), process(), 0},
+        std::uint64_t(0), thrust::plus<std::uint64_t>()));
     const double largest = transport_->maximum(work), total = transport_->sum(work);
     const double imbalance = total > 0 ? largest / (total / double(transport_->processes())) : 1.0;
     balance_.rebuilds.push_back({steps_, time_, imbalance, cut_again_});

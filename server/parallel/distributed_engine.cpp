@@ -9,62 +9,44 @@
 
 #include "server/core/engine_state_rows.h"
 #include "server/core/neighbour_list.h"
+#include "server/parallel/byte_message.h"
 
 namespace cascade {
 namespace {
 
-// Appends the bytes of `count` values.
-template <typename T>
-void put(std::vector<char>& out, const T* values, std::size_t count) {
-  const std::size_t at = out.size();
-  out.resize(at + count * sizeof(T));
-  if (count) std::memcpy(out.data() + at, values, count * sizeof(T));
-}
-
-template <typename T>
-void take(const std::vector<char>& in, std::size_t& offset, T* values, std::size_t count) {
-  if (offset + count * sizeof(T) > in.size()) throw std::logic_error("a process's frame message is short");
-  if (count) std::memcpy(values, in.data() + offset, count * sizeof(T));
-  offset += count * sizeof(T);
-}
-
 // A process's rows of a state: their count, then every array (in the state's order of names)
 // as its components per particle and its values.
 std::vector<char> pack_state_rows(const EngineState& rows) {
-  std::vector<char> out;
-  const std::uint64_t count = rows.particles;
-  put(out, &count, 1);
+  ByteWriter out;
+  out.put(std::uint64_t(rows.particles));
   auto pack = [&](const auto& arrays) {
     for (const auto& [name, values] : arrays) {
-      const std::uint32_t c = std::uint32_t(components_of(values, rows.particles, name));
-      put(out, &c, 1);
-      put(out, values.data(), values.size());
+      out.put(std::uint32_t(row_width(values, rows.particles, name)));
+      out.put(values.data(), values.size());
     }
   };
   pack(rows.reals);
   pack(rows.integers);
-  return out;
+  return std::move(out.bytes);
 }
 
 // A process's rows (pack_state_rows), whose arrays have the names of `like`'s.
 EngineState unpack_state_rows(const std::vector<char>& in, const EngineState& like) {
   EngineState rows;
-  std::size_t offset = 0;
-  std::uint64_t count = 0;
-  take(in, offset, &count, 1);
+  ByteReader reader(in);
+  const auto count = reader.take<std::uint64_t>();
   rows.particles = std::size_t(count);
   auto unpack = [&](const auto& names, auto& arrays) {
     for (const auto& named : names) {
-      std::uint32_t c = 0;
-      take(in, offset, &c, 1);
+      const auto c = reader.take<std::uint32_t>();
       auto& values = arrays[named.first];
       values.resize(std::size_t(count) * c);
-      take(in, offset, values.data(), values.size());
+      reader.take(values.data(), values.size());
     }
   };
   unpack(like.reals, rows.reals);
   unpack(like.integers, rows.integers);
-  if (offset != in.size()) throw std::logic_error("a process's rows of the state are longer than its arrays");
+  if (!reader.done()) throw std::logic_error("a process's rows of the state are longer than its arrays");
   return rows;
 }
 
@@ -78,7 +60,7 @@ void place_state_rows(const EngineState& rows, EngineState& whole, std::vector<c
   }
   auto place = [&](const auto& arrays_in, auto& arrays_out) {
     for (const auto& [name, values] : arrays_in) {
-      const std::size_t c = components_of(values, rows.particles, name);
+      const std::size_t c = row_width(values, rows.particles, name);
       auto& out = arrays_out[name];
       if (out.empty()) out.assign(whole.particles * c, 0);
       if (out.size() != whole.particles * c) throw std::logic_error("the processes' states differ in array " + name);
@@ -220,26 +202,21 @@ PoreWaterAccount DistributedEngine::pore_water_account() const {
 }
 
 std::vector<std::size_t> DistributedEngine::share_sizes() const {
-  const std::uint64_t own = share_size();
-  std::vector<char> message(sizeof own);
-  std::memcpy(message.data(), &own, sizeof own);
-  const auto received = transport_.exchange(std::vector<std::vector<char>>(transport_.processes(), message));
+  ByteWriter own;
+  own.put(std::uint64_t(share_size()));
+  const auto received = transport_.exchange(std::vector<std::vector<char>>(transport_.processes(), own.bytes));
   std::vector<std::size_t> sizes;
-  for (const auto& in : received) {
-    std::uint64_t n = 0;
-    std::size_t offset = 0;
-    take(in, offset, &n, 1);
-    sizes.push_back(std::size_t(n));
-  }
+  for (const auto& in : received) sizes.push_back(std::size_t(ByteReader(in).take<std::uint64_t>()));
   return sizes;
 }
 
-// Each process sends every other the particles it owns (its share's frame, field "process"), and
-// each puts them together by id: the whole run's frame, as one process would give it.
 FieldFrame DistributedEngine::frame() const { return gather_frame(true); }
 
 FieldFrame DistributedEngine::frame_at_process_0() const { return gather_frame(false); }
 
+// Each process sends the particles it owns (its share's frame, field "process") to every other,
+// or to process 0 alone, and each that receives puts them together by id: the whole run's frame,
+// as one process would give it.
 FieldFrame DistributedEngine::gather_frame(bool everywhere) const {
   const FieldFrame own = share_->frame();
   const auto* process = own.find("process");
@@ -249,21 +226,20 @@ FieldFrame DistributedEngine::gather_frame(bool everywhere) const {
   for (std::uint32_t k = 0; k < own.size(); ++k)
     if (process->values[k] == double(me)) rows.push_back(k);
 
-  std::vector<char> message;
-  const std::uint64_t count = rows.size();
-  put(message, &count, 1);
+  ByteWriter message;
+  message.put(std::uint64_t(rows.size()));
   const bool surface = !own.free_surface.empty();
   for (std::uint32_t k : rows) {
-    put(message, &own.id[k], 1);
-    put(message, &own.position[3 * std::size_t(k)], 3);
-    put(message, &own.phase[k], 1);
-    if (surface) put(message, &own.free_surface[k], 1);
+    message.put(own.id[k]);
+    message.put(&own.position[3 * std::size_t(k)], 3);
+    message.put(own.phase[k]);
+    if (surface) message.put(own.free_surface[k]);
     for (const auto& field : own.fields)
-      put(message, &field.values[std::size_t(k) * field.components], std::size_t(field.components));
+      message.put(&field.values[std::size_t(k) * field.components], std::size_t(field.components));
   }
   std::vector<std::vector<char>> send(transport_.processes());
   for (int r = 0; r < transport_.processes(); ++r)
-    if (everywhere || r == 0) send[r] = message;
+    if (everywhere || r == 0) send[r] = message.bytes;
   const auto received = transport_.exchange(send);
   if (!everywhere && me != 0) return {};
 
@@ -282,20 +258,18 @@ FieldFrame DistributedEngine::gather_frame(bool everywhere) const {
   std::vector<char> seen(n, 0);
   std::size_t placed = 0;
   for (const auto& in : received) {
-    std::size_t offset = 0;
-    std::uint64_t rows_in = 0;
-    take(in, offset, &rows_in, 1);
+    ByteReader reader(in);
+    const auto rows_in = reader.take<std::uint64_t>();
     for (std::uint64_t m = 0; m < rows_in; ++m) {
-      std::uint32_t id = 0;
-      take(in, offset, &id, 1);
+      const auto id = reader.take<std::uint32_t>();
       if (id >= n || seen[id]) throw std::logic_error("particle " + std::to_string(id) + " is owned twice or unknown");
       seen[id] = 1, ++placed;
       whole.id[id] = id;
-      take(in, offset, &whole.position[3 * std::size_t(id)], 3);
-      take(in, offset, &whole.phase[id], 1);
-      if (surface) take(in, offset, &whole.free_surface[id], 1);
+      reader.take(&whole.position[3 * std::size_t(id)], 3);
+      reader.take(&whole.phase[id], 1);
+      if (surface) reader.take(&whole.free_surface[id], 1);
       for (auto& field : whole.fields)
-        take(in, offset, &field.values[std::size_t(id) * field.components], std::size_t(field.components));
+        reader.take(&field.values[std::size_t(id) * field.components], std::size_t(field.components));
     }
   }
   if (placed != n)
@@ -304,11 +278,21 @@ FieldFrame DistributedEngine::gather_frame(bool everywhere) const {
   return whole;
 }
 
-// Every process sends every other the rows of the particles it owns (its share's state), and
-// each puts them together by id.
-EngineState DistributedEngine::state() const {
+EngineState DistributedEngine::state() const { return gather_state(true); }
+
+EngineState DistributedEngine::state_at_process_0() const { return gather_state(false); }
+
+// Each process sends the rows of the particles it owns (its share's state) to every other, or to
+// process 0 alone, and each that receives puts them together by id.
+EngineState DistributedEngine::gather_state(bool everywhere) const {
   const EngineState own = share_->state();
-  const auto received = transport_.exchange(std::vector<std::vector<char>>(transport_.processes(), pack_state_rows(own)));
+  const PoreWaterAccount account = pore_water_account();
+  const std::vector<char> rows = pack_state_rows(own);
+  std::vector<std::vector<char>> send(transport_.processes());
+  for (int r = 0; r < transport_.processes(); ++r)
+    if (everywhere || r == 0) send[r] = rows;
+  const auto received = transport_.exchange(send);
+  if (!everywhere && transport_.process() != 0) return {};
   EngineState whole = own;
   whole.particles = particles_;
   for (auto& [name, values] : whole.reals) values.clear();
@@ -317,7 +301,7 @@ EngineState DistributedEngine::state() const {
   for (const auto& in : received) place_state_rows(unpack_state_rows(in, own), whole, seen);
   if (std::count(seen.begin(), seen.end(), 1) != std::ptrdiff_t(particles_))
     throw std::logic_error("the processes own fewer particles than the run's " + std::to_string(particles_));
-  whole.pore_water = pore_water_account();
+  whole.pore_water = account;
   return whole;
 }
 

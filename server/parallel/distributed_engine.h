@@ -49,6 +49,9 @@ class DistributedEngine final : public Engine {
   // The whole run's state, on every process, its particles in id order: what one process's
   // engine restores, and what a split run over any number of processes restores.
   EngineState state() const override;
+  // The whole run's state on process 0, an empty one on the others (a split server's other
+  // processes keep no checkpoint).
+  EngineState state_at_process_0() const;
   // A state of the same case taken at any number of processes (rows in any order): the slabs are
   // cut again at the state's positions and every process takes its share of it.
   void restore(const EngineState& state) override;
@@ -68,6 +71,7 @@ class DistributedEngine final : public Engine {
   [[noreturn]] static void refuse(const char* what);
   std::unique_ptr<Engine> start_share(const HostParticles& whole, const EngineState* checkpoint);
   FieldFrame gather_frame(bool everywhere) const;
+  EngineState gather_state(bool everywhere) const;
 
   EngineConfig config_;
   Transport& transport_;

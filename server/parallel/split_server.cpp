@@ -125,7 +125,7 @@ class LeaderEngine final : public Engine {
   }
   HydraulicForcing forcing() const override { return engine_->forcing(); }
   void restart_clock() override { call(Call::restart_clock), engine_->restart_clock(); }
-  EngineState state() const override { return call(Call::state), engine_->state(); }
+  EngineState state() const override { return call(Call::state), engine_->state_at_process_0(); }
   void restore(const EngineState& state) override { call(Call::restore, state_message(state)), engine_->restore(state); }
   // A fork: a sibling engine that restores this one's state (to round-off what this one would
   // do: its shares are cut anew).
@@ -196,7 +196,7 @@ void follow_engine(const std::string& case_bytes, Precision precision, Device de
         case Call::lost_particles: engine->lost_particles(); break;
         case Call::device_bytes: engine->device_bytes(); break;
         case Call::pore_water_account: engine->pore_water_account(); break;
-        case Call::state: engine->state(); break;
+        case Call::state: engine->state_at_process_0(); break;
         case Call::restore: engine->restore(state_from_message(bytes)); break;
         case Call::zero_velocities: engine->zero_velocities(); break;
         case Call::set_relaxation: {
