@@ -7,12 +7,14 @@ process, the case at dp for one process and at dp / P^(1/D) for P processes. Pri
 the wall time, the steps, the particle-steps per second, the particles each process held (its
 own, the copies in its halo, the dummies there: run.json's process_particles), the efficiency
 against one process with one thread and, for a split run, the slowest process's wall time in the
-steps' exchanges and the bytes all processes sent per step (run.json's exchange), with the
+steps' exchanges and the bytes all processes sent per step (run.json's exchange), and the
+frames written with the wall time of the outputs per frame (run.json's outputs: split over
+processes, the frames are gathered to process 0, which writes them), with the
 machine (CPU model, cores, memory, STREAM's triad) and the load average before and after. The figures of one run of this script are
 comparable with each other; figures from another machine or another run are not.
 
 usage: /usr/bin/python3 bench/split_scaling.py [--case cases/dam_break_3d.yaml] [--dp 0.0103]
-           [--until 0.005] [--precision float] [--processes 2]
+           [--until 0.005] [--precision float] [--processes 2] [--frame-interval T]
 """
 import argparse
 import json
@@ -27,9 +29,11 @@ from pathlib import Path
 from compare_baseline import ROOT, build_current, machine
 
 
-def run(cascade, case, dp, until, precision, processes, threads, out):
+def run(cascade, case, dp, until, precision, processes, threads, out, frame_interval):
     command = [str(cascade), "run", str(ROOT / case), "--out", str(out), "--until", str(until),
                "--precision", precision, "--threads", str(threads), "--set", f"dp={dp}"]
+    if frame_interval:
+        command += ["--set", f"output.interval={frame_interval}"]
     if processes > 1:
         command = [shutil.which("mpirun"), "--oversubscribe", "--allow-run-as-root", "-np", str(processes)] + command
     start = time.monotonic()
@@ -47,6 +51,8 @@ def main():
     parser.add_argument("--until", type=float, default=0.005)
     parser.add_argument("--precision", default="float")
     parser.add_argument("--processes", type=int, default=2)
+    parser.add_argument("--frame-interval", type=float, default=0.0,
+                        help="output.interval of the case (s); the case's own when 0")
     args = parser.parse_args()
     if shutil.which("mpirun") is None:
         sys.exit("split_scaling: mpirun is missing (openmpi-bin)")
@@ -58,14 +64,15 @@ def main():
     print(f"load average before: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     print(f"case: {args.case} --until {args.until} --precision {args.precision}")
     print(f"{'kind':<7} {'dp':>8} {'processes':>9} {'threads':>7} {'wall s':>8} {'steps':>6} {'particles':>10} "
-          f"{'particle-steps/s':>17} {'efficiency':>10} {'exchange s':>10} {'MB/step':>8}  held per process")
+          f"{'particle-steps/s':>17} {'efficiency':>10} {'exchange s':>10} {'MB/step':>8} {'frames':>6} "
+          f"{'s/frame':>8}  held per process")
     runs = [("strong", args.dp, 1, 1), ("strong", args.dp, 1, p), ("strong", args.dp, p, 1),
             ("weak", args.dp * p ** (1 / dimensions), 1, 1), ("weak", args.dp, p, 1)]
     with tempfile.TemporaryDirectory(prefix="split_scaling.") as scratch:
         reference = {}
         for k, (kind, dp, processes, threads) in enumerate(runs):
             wall, summary = run(cascade, args.case, dp, args.until, args.precision, processes, threads,
-                                Path(scratch) / str(k))
+                                Path(scratch) / str(k), args.frame_interval)
             rate = summary["particles"]["total"] * summary["steps"] / wall
             workers = processes * threads
             if workers == 1:
@@ -74,9 +81,11 @@ def main():
             held = summary.get("process_particles", [summary["particles"]["total"]])
             exchange = summary.get("exchange", {"seconds": 0.0, "bytes": 0})
             megabytes = exchange["bytes"] / max(1, summary["steps"]) / 1e6
+            outputs = summary["outputs"]
+            per_frame = outputs["seconds"] / max(1, outputs["frames"])
             print(f"{kind:<7} {dp:8.5f} {processes:9d} {threads:7d} {wall:8.1f} {summary['steps']:6d} "
                   f"{summary['particles']['total']:10d} {rate:17.3g} {efficiency:10.2f} {exchange['seconds']:10.1f} "
-                  f"{megabytes:8.2f}  {held}", flush=True)
+                  f"{megabytes:8.2f} {outputs['frames']:6d} {per_frame:8.3f}  {held}", flush=True)
     print(f"load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
 
 

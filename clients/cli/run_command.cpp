@@ -114,9 +114,10 @@ const char* precision_name(Precision p) { return p == Precision::single_precisio
 // `output.interval`, probes every `output.probe_interval`, both also at the start and at the end
 // of the run.
 //
-// In a run split over processes (`transport`), every process takes the frames and finds the same
-// events (DistributedEngine::frame gives each the whole run's), and process 0 alone writes the
-// files; whether it could is agreed on by all, so that a failed write stops every process.
+// In a run split over processes (`transport`), every process takes part in gathering the frames
+// to process 0 (Engine::frame_at_process_0), which alone samples the probes, finds the events and
+// writes the files; whether it could is agreed on by all, so that a failed write stops every
+// process.
 class Outputs {
  public:
   Outputs(const v1::ScenarioSpec& spec, const std::filesystem::path& dir, double h, double mass,
@@ -151,14 +152,17 @@ class Outputs {
     const bool frame_due = force ? t != last_frame_time_ : t >= next_frame_ - frame_slack;
     const bool probe_due = force ? t != last_probe_time_ : t >= next_probe_ - probe_slack;
     if (!frame_due && !probe_due) return {};
-    const FieldFrame frame = engine.frame();
+    const auto started = std::chrono::steady_clock::now();
+    const FieldFrame frame = engine.frame_at_process_0();
     std::vector<CascadeEvent> fired;
     std::string failure;
     try {
       if (probe_due) {
-        const std::vector<double> values = sampler_.sample(frame);
-        if (probes_) probes_->write_row(t, values);
-        fired = events_.observe(frame, values, engine.forcing().ponding_pressure);
+        if (!transport_ || transport_->process() == 0) {  // the other processes' frames hold no particles
+          const std::vector<double> values = sampler_.sample(frame);
+          if (probes_) probes_->write_row(t, values);
+          fired = events_.observe(frame, values, engine.forcing().ponding_pressure);
+        }
         next_probe_ = next_due_time(next_probe_, t, probe_interval_);
         last_probe_time_ = t;
       }
@@ -168,6 +172,7 @@ class Outputs {
         if (snapshots_) snapshots_->write(frame);
         next_frame_ = next_due_time(next_frame_, t, frame_interval_);
         last_frame_time_ = t;
+        ++frames_;
       }
     } catch (const std::exception& e) {
       failure = e.what();
@@ -175,8 +180,12 @@ class Outputs {
     }
     if (transport_ && transport_->maximum(failure.empty() ? 0.0 : 1.0) > 0)
       throw std::runtime_error(failure.empty() ? "process 0 could not write the outputs" : failure);
+    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return fired;
   }
+
+  std::uint64_t frames() const { return frames_; }
+  double seconds() const { return seconds_; }  // in observe: taking the frames, sampling, writing
 
  private:
   const v1::ScenarioSpec& spec_;
@@ -189,6 +198,8 @@ class Outputs {
   std::unique_ptr<SnapshotWriter> snapshots_;
   CascadeEventDetector events_;
   Transport* transport_;
+  std::uint64_t frames_ = 0;
+  double seconds_ = 0;
 };
 
 std::string format_number(double v) {
@@ -386,7 +397,7 @@ int run_command(const std::vector<std::string>& args) {
 #if defined(CASCADE_HAVE_MPI)
     if (split)
       std::fprintf(log, "cascade run: split over %d processes (mpirun): slabs along axis %d, halo %g m\n", processes,
-                   slabs_for(config, particles, processes).axis, halo_width(config, particles));
+                   slabs_for(config, particles, processes).axis, halo_width(config));
 #endif
     std::fprintf(log,
                  "cascade run: %s, %zu particles (%zu water, %zu soil, %zu boundary), dp = %g m, h = %g m, "
@@ -460,6 +471,7 @@ int run_command(const std::vector<std::string>& args) {
       }
     }
     record(outputs.observe(*engine, true));
+    summary.frames_written = outputs.frames(), summary.output_seconds = outputs.seconds();
     progress.finish(engine->time(), engine->step_count(), engine->last_dt());
     summary.status = RunSummary::Status::completed;
   } catch (const std::exception& e) {

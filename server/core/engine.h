@@ -91,6 +91,10 @@ class Engine {
   virtual std::size_t lost_particles() const = 0;  // left the domain along a non-periodic axis
   virtual std::size_t device_bytes() const = 0;    // memory held in particle and grid arrays
   virtual FieldFrame frame() const = 0;            // all fields on the host, ordered by id
+  // The frame the outputs write: split over processes (DistributedEngine), gathered to process 0
+  // alone (the others get one with the time and step and no particles; process 0 writes the
+  // outputs), so that a frame costs each particle one message, not one to every process.
+  virtual FieldFrame frame_at_process_0() const { return frame(); }
   virtual const char* device_name() const = 0;
   // The free-surface hydraulic conditions (Eq. 39); a change applies from the next step on.
   virtual void set_forcing(const HydraulicForcing& forcing) = 0;

@@ -105,16 +105,6 @@ struct OwnedOnly {
   }
 };
 
-// Runs `pass` on the particles marked near (Simulation::launch_near).
-template <typename F>
-struct NearOnly {
-  F pass;
-  const std::uint8_t* near;
-  CASCADE_HD void operator()(std::uint32_t i) const {
-    if (near[i]) pass(i);
-  }
-};
-
 // A copy of another process's particle.
 struct OwnedElsewhere {
   std::uint32_t process;

@@ -1,8 +1,11 @@
 // A run split over several processes (issue 17): each process owns the moving particles of one
-// slab of the domain along one axis and holds copies of the others' particles within a halo
-// around its slab, refreshed from their owners at the half step and the end of every step. The
-// engine sees the other processes only through Transport (server/parallel/ implements it with
-// MPI), so that no physics header and no part of the engine depends on MPI.
+// slab of the domain along one axis, and the dummies whose ghost nodes lie in it, and holds
+// copies of the others' particles within a halo of one neighbour-list radius (2h and the skin)
+// around its slab. The copies take their owners' values at the half step and the end of every
+// step, and each pass whose results a neighbour reads sends them from the owners to the copies
+// (Simulation::evaluate_rates). The engine sees the other processes only through Transport
+// (server/parallel/ implements it with MPI), so that no physics header and no part of the engine
+// depends on MPI.
 #pragma once
 
 #include <algorithm>
@@ -31,7 +34,9 @@ class Transport {
 };
 
 // The slabs: process r owns the moving particles with cut[r] <= x[axis] < cut[r + 1] (the first
-// and last slabs reach past the domain), and holds every particle within `halo` of its slab.
+// and last slabs reach past the domain) and the dummies whose ghost nodes lie there: the grid
+// around a ghost node, from which its dummy's values are interpolated (Eqs. 30-35), then lies
+// within r's halo. r holds every particle within `halo` of its slab, and the dummies it owns.
 struct Slabs {
   int axis = 0;
   std::vector<double> cut;  // processes + 1 entries, the first −∞ and the last +∞
@@ -43,6 +48,8 @@ struct Slabs {
     while (r + 1 < processes() && x >= cut[r + 1]) ++r;
     return r;
   }
+  // Whether process r holds the dummy at x with its ghost node at ghost_x (both along the axis).
+  bool holds_dummy(int r, double x, double ghost_x) const { return owner_of(ghost_x) == r || distance_to(r, x) < halo; }
   // Distance from x to slab r along the axis: 0 inside.
   double distance_to(int r, double x) const {
     if (x < cut[r]) return cut[r] - x;

@@ -170,9 +170,11 @@ class Simulation final : public Engine {
     if (!has_soil_ || relaxing()) return;
     update_lists();
     refresh_halo();
-    launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_, raw(dummy_flags_)}, moving_, active_);
+    launch_owned(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_, raw(dummy_flags_)}, moving_, active_);
+    send_dummy_values();
     pore_water_gradients();
     seepage_discharge();
+    send_pore_water_gradients();
   }
 
   double time() const override { return time_; }
@@ -314,7 +316,7 @@ class Simulation final : public Engine {
     add(dummy_pore_pressure_), add(dummy_stress_), add(dummy_velocity_), add(wall_), add(wall_pore_pressure_);
     add(velocity_gradient_), add(porosity_rate_), add(plastic_strain_), add(start_plastic_strain_), add(start_porosity_);
     add(unbalanced_acceleration_), add(pore_water_inflow_), add(pore_water_blocks_), add(pore_water_totals_);
-    add(owner_), add(near_);
+    add(owner_);
     return bytes + cells_.bytes() + neighbours_.bytes();
   }
 
@@ -563,21 +565,13 @@ class Simulation final : public Engine {
   }
   static constexpr int kLaunchBlock = 256;
 
-  // A pass whose results only the particles this process owns need: the interactions, which no
-  // other pass reads of a neighbour. A copy's rates would be replaced by its owner's at the next
-  // refresh_halo, so in a share of a split run the copies skip it.
+  // A pass that reads its particle's neighbours, run on the particles this process owns: a copy
+  // near the halo's edge lacks some of its neighbours, so in a share of a split run the copies
+  // skip it and take their owners' results where a later pass reads them (send_to_copies), or
+  // at the next refresh_halo.
   template <typename F>
   void launch_owned(const F& f, std::size_t begin, std::size_t end) const {
     if (transport_) launch(OwnedOnly<F>{f, raw(owner_), process()}, begin, end);
-    else launch(f, begin, end);
-  }
-
-  // The renormalised gradients (and the pressures they come with), which this process's
-  // interactions read within one list radius: in a share of a split run the copies farther from
-  // the slab skip them and keep their owners' values of the last refresh (map_halo's near_).
-  template <typename F>
-  void launch_near(const F& f, std::size_t begin, std::size_t end) const {
-    if (transport_) launch(NearOnly<F>{f, raw(near_)}, begin, end);
     else launch(f, begin, end);
   }
   static constexpr std::size_t kDynamicLaunchFrom = 64 * kLaunchBlock;
@@ -689,7 +683,7 @@ class Simulation final : public Engine {
     boundary_values(half_step);
     density_gradients();
     const std::uint32_t water = grid_.water_end;
-    if (has_soil_ && !relaxing()) seepage_discharge();
+    if (has_soil_ && !relaxing()) seepage_discharge(), send_pore_water_gradients();
     launch_owned(WaterInteraction<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_,
                                              has_soil_ ? raw(saturation_) : nullptr},
                  0, water);
@@ -702,38 +696,49 @@ class Simulation final : public Engine {
            relaxing() ? 0u : water, moving_);
   }
 
-  // The dummy particles' water values (Eqs. 30-35a); with soil, the free surface (Eq. 38, at the
-  // step's first evaluation), the pore-water state and surface conditions (Eqs. 6, 39) and the
-  // dummies' soil side (Eqs. 32a, 32b, 35a).
+  // With soil, the free surface (Eq. 38, at the step's first evaluation) and the pore-water state
+  // and surface conditions (Eqs. 6, 39); then the dummy particles' water values (Eqs. 30-35a) and,
+  // with soil, their soil side (Eqs. 32a, 32b, 35a), which read the pore-water state. The water
+  // side reads the water only, so its place after the soil's states changes nothing. The pore-water
+  // state reads its own particle only: a copy computes it from its owner's values as the owner does.
   void boundary_values(bool half_step) {
-    launch(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_, raw(dummy_flags_), half_step}, moving_, active_);
-    if (!has_soil_) return;
-    const std::uint32_t water = grid_.water_end;
-    if (!half_step) launch(FreeSurfaceDetection<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_}, water, moving_);
-    // Held pore water keeps its surface states too.
-    launch(PoreWaterState<Real, Dim>{view(), soil_view(), surface_forcing(), water_.rho0, !half_step && !relaxing()},
-           water, moving_);
-    launch(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_, raw(dummy_flags_)}, moving_, active_);
+    if (has_soil_) {
+      const std::uint32_t water = grid_.water_end;
+      if (!half_step) {
+        launch_owned(FreeSurfaceDetection<Real, Dim>{view(), soil_view(), grid_, neighbours_.view(), sph_}, water,
+                     moving_);
+        send_to_copies([&](auto&& send) { send(free_surface_, soil_halo_); });
+      }
+      // Held pore water keeps its surface states too.
+      launch(PoreWaterState<Real, Dim>{view(), soil_view(), surface_forcing(), water_.rho0, !half_step && !relaxing()},
+             water, moving_);
+    }
+    launch_owned(SolidBoundaryWater<Real, Dim>{view(), grid_, sph_, water_, raw(dummy_flags_), half_step}, moving_,
+                 active_);
+    if (has_soil_)
+      launch_owned(SolidBoundarySoil<Real, Dim>{view(), soil_view(), grid_, sph_, raw(dummy_flags_)}, moving_, active_);
+    send_dummy_values();
   }
 
   // The seepage discharge (Eq. 27b), for the frames and the surface states (pore_water_state.h).
   void seepage_discharge() {
-    launch(SeepageDischarge<Real, Dim>{view(), soil_view(), sph_, surface_forcing()}, grid_.water_end, moving_);
+    launch_owned(SeepageDischarge<Real, Dim>{view(), soil_view(), sph_, surface_forcing()}, grid_.water_end, moving_);
   }
 
   // Water pressure (Eq. 6) and the renormalised gradients of the water and pore-water densities
-  // (Eq. 25), each over its own particles.
+  // (Eq. 25), each over its own particles. The pore water's reads the free water's pressure.
   void density_gradients() {
     const std::uint32_t water = grid_.water_end;
-    launch_near(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, water);
+    launch_owned(RenormalisedDensityGradient<Real, Dim>{view(), grid_, neighbours_.view(), sph_, water_}, 0, water);
+    send_to_copies([&](auto&& send) { send(pressure_, water_halo_), send(water_density_gradient_, water_halo_); });
     if (has_soil_ && !relaxing()) pore_water_gradients();
   }
 
   // The soil's renormalised gradients of the pore-water density and pressure (Eq. 25).
   void pore_water_gradients() {
-    launch_near(RenormalisedDensityGradient<Real, Dim, true>{view(), grid_, neighbours_.view(), sph_, water_,
-                                                             soil_view(), water_.rho0},
-                grid_.water_end, moving_);
+    launch_owned(RenormalisedDensityGradient<Real, Dim, true>{view(), grid_, neighbours_.view(), sph_, water_,
+                                                              soil_view(), water_.rho0},
+                 grid_.water_end, moving_);
   }
 
   SoilView<Real, Dim> soil_view() {
@@ -894,9 +899,11 @@ class Simulation final : public Engine {
   // A run split over processes (partition.h). Each process steps its share: the particles it
   // owns, copies of the other processes' particles within its halo, and the dummies there. The
   // copies take their owners' values at the half step and at the end of every step (refresh_halo),
-  // so that each owned particle's rates are those of the whole run; the copies' own interactions
-  // are not computed (launch_owned) and what they integrate is replaced.
-  // The halo covers what an evaluation reads around an owned particle (DistributedEngine).
+  // and the results of each pass that reads neighbours as a later pass needs them (the free
+  // surface, the dummies' values, the gradients: send_to_copies), so that each owned particle's
+  // rates are those of the whole run; the copies' own passes over neighbours are not computed
+  // (launch_owned) and what they integrate is replaced. The halo is one list radius and the skin
+  // (DistributedEngine's halo_width).
   std::uint32_t process() const { return std::uint32_t(transport_->process()); }
 
   void refuse_when_partitioned(const char* what) const {
@@ -967,18 +974,19 @@ class Simulation final : public Engine {
     };
     {
       const thrust::host_vector<V> position(position_.begin(), position_.end());
+      const thrust::host_vector<V> ghost(ghost_.begin(), ghost_.end());
       const thrust::host_vector<Phase> phase(phase_.begin(), phase_.end());
       thrust::host_vector<std::uint32_t> owner(owner_.begin(), owner_.end());
       std::vector<std::uint32_t> kept;
       std::vector<std::vector<std::uint32_t>> leaving(processes);
       for (std::uint32_t k = 0; k < phase.size(); ++k) {
         if (phase[k] == Phase::boundary && cut_again) {
-          if (owner[k] != me) continue;  // its old slab's process sends it where it is needed
-          const double x = double(position[k][slabs_.axis]);
-          owner[k] = std::uint32_t(slabs_.owner_of(x));
+          if (owner[k] != me) continue;  // its old owner sends it where it is needed
+          const double x = double(position[k][slabs_.axis]), ghost_x = double(ghost[k][slabs_.axis]);
+          owner[k] = std::uint32_t(slabs_.owner_of(ghost_x));
           for (int r = 0; r < processes; ++r)
-            if (r != int(me) && slabs_.distance_to(r, x) < slabs_.halo) leaving[r].push_back(k);
-          if (slabs_.distance_to(int(me), x) < slabs_.halo) kept.push_back(k);
+            if (r != int(me) && slabs_.holds_dummy(r, x, ghost_x)) leaving[r].push_back(k);
+          if (slabs_.holds_dummy(int(me), x, ghost_x)) kept.push_back(k);
           continue;
         }
         if (phase[k] != Phase::boundary && owner[k] != me) continue;  // a copy
@@ -997,11 +1005,11 @@ class Simulation final : public Engine {
       keep_and_receive(kept, transport_->exchange(send));
     }
     if (cut_again) {  // the dummies received: their new owners
-      const thrust::host_vector<V> position(position_.begin(), position_.end());
+      const thrust::host_vector<V> ghost(ghost_.begin(), ghost_.end());
       const thrust::host_vector<Phase> phase(phase_.begin(), phase_.end());
       thrust::host_vector<std::uint32_t> owner(owner_.begin(), owner_.end());
       for (std::size_t k = 0; k < phase.size(); ++k)
-        if (phase[k] == Phase::boundary) owner[k] = std::uint32_t(slabs_.owner_of(double(position[k][slabs_.axis])));
+        if (phase[k] == Phase::boundary) owner[k] = std::uint32_t(slabs_.owner_of(double(ghost[k][slabs_.axis])));
       owner_ = owner;
     }
     const thrust::host_vector<V> position(position_.begin(), position_.end());
@@ -1021,25 +1029,71 @@ class Simulation final : public Engine {
     keep_and_receive(all, transport_->exchange(send));
   }
 
-  // After the sort: the rows that refresh_halo sends to each process and those it fills from
-  // each. Process r holds copies of this process's particles that were within r's halo at
-  // share_particles (the sort moved none), and both sides order them by id. The ids are
-  // exchanged once per rebuild to check that both sides agree.
+  // Rows of one kind of copy (moving particles, dummies): per process, the rows of this
+  // process's own particles that it sends there and the rows of its copies that it fills from
+  // there, both in the order of the particles' ids. `first` is subtracted from every row, for the
+  // arrays of the dummy block (dummy_pore_pressure_ and the like).
+  struct HaloRows {
+    std::vector<Vector<std::uint32_t>> send, receive;
+    static HaloRows of(const std::vector<std::vector<std::uint32_t>>& send,
+                       const std::vector<std::vector<std::uint32_t>>& receive, std::uint32_t first = 0) {
+      HaloRows rows;
+      for (std::size_t r = 0; r < send.size(); ++r) {
+        std::vector<std::uint32_t> out(send[r]), in(receive[r]);
+        for (auto& k : out) k -= first;
+        for (auto& k : in) k -= first;
+        rows.send.emplace_back(out.begin(), out.end());
+        rows.receive.emplace_back(in.begin(), in.end());
+      }
+      return rows;
+    }
+  };
+
+  // After the sort: the rows that send_to_copies sends to each process and those it fills from
+  // each. Process r holds copies of this process's moving particles that were within r's halo at
+  // share_particles (the sort moved none) and of the dummies it owns within that halo
+  // (Slabs::holds_dummy). The ids are exchanged once per rebuild to check that both sides agree.
   void map_halo() {
     const std::uint32_t me = process();
     const int processes = transport_->processes();
-    const thrust::host_vector<V> position(position_.begin(), position_.begin() + moving_);
-    const thrust::host_vector<std::uint32_t> owner(owner_.begin(), owner_.begin() + moving_);
-    const thrust::host_vector<std::uint32_t> id(id_.begin(), id_.begin() + moving_);
+    const thrust::host_vector<V> position(position_.begin(), position_.begin() + active_);
+    const thrust::host_vector<std::uint32_t> owner(owner_.begin(), owner_.begin() + active_);
+    const thrust::host_vector<std::uint32_t> id(id_.begin(), id_.begin() + active_);
     std::vector<std::vector<std::uint32_t>> send(processes), receive(processes);
-    for (std::uint32_t k = 0; k < moving_; ++k) {
+    std::vector<std::vector<std::uint32_t>> dummy_send(processes), dummy_receive(processes);
+    for (std::uint32_t k = 0; k < active_; ++k) {
+      const bool dummy = k >= moving_;
       if (owner[k] != me) {
-        receive[owner[k]].push_back(k);
+        (dummy ? dummy_receive : receive)[owner[k]].push_back(k);
         continue;
       }
       for (int r = 0; r < processes; ++r)
-        if (r != int(me) && slabs_.distance_to(r, double(position[k][slabs_.axis])) < slabs_.halo) send[r].push_back(k);
+        if (r != int(me) && slabs_.distance_to(r, double(position[k][slabs_.axis])) < slabs_.halo)
+          (dummy ? dummy_send : send)[r].push_back(k);
     }
+    agree_on_copies(send, receive, id);
+    agree_on_copies(dummy_send, dummy_receive, id);
+    moving_halo_ = HaloRows::of(send, receive);
+    auto of_phase = [&](const std::vector<std::vector<std::uint32_t>>& rows, bool water) {
+      std::vector<std::vector<std::uint32_t>> picked(processes);
+      for (int r = 0; r < processes; ++r)
+        for (std::uint32_t k : rows[r])
+          if ((k < grid_.water_end) == water) picked[r].push_back(k);
+      return picked;
+    };
+    water_halo_ = HaloRows::of(of_phase(send, true), of_phase(receive, true));
+    soil_halo_ = HaloRows::of(of_phase(send, false), of_phase(receive, false));
+    dummy_halo_ = HaloRows::of(dummy_send, dummy_receive);
+    dummy_block_halo_ = HaloRows::of(dummy_send, dummy_receive, std::uint32_t(moving_));
+    gather_listed_dummies();
+    measure_balance();
+  }
+
+  // Orders each process's rows by id and checks that every process fills from this one the copies
+  // this one sends it.
+  void agree_on_copies(std::vector<std::vector<std::uint32_t>>& send, std::vector<std::vector<std::uint32_t>>& receive,
+                       const thrust::host_vector<std::uint32_t>& id) {
+    const int processes = transport_->processes();
     auto by_id = [&](std::uint32_t a, std::uint32_t b) { return id[a] < id[b]; };
     std::vector<std::vector<char>> sent_ids(processes);
     for (int r = 0; r < processes; ++r) {
@@ -1051,8 +1105,6 @@ class Simulation final : public Engine {
       }
     }
     const auto received_ids = transport_->exchange(sent_ids);
-    halo_send_.assign(processes, Vector<std::uint32_t>());
-    halo_receive_.assign(processes, Vector<std::uint32_t>());
     for (int r = 0; r < processes; ++r) {
       bool same = received_ids[r].size() == receive[r].size() * sizeof(std::uint32_t);
       for (std::size_t m = 0; same && m < receive[r].size(); ++m) {
@@ -1061,13 +1113,30 @@ class Simulation final : public Engine {
         same = sent == id[receive[r][m]];
       }
       if (!same)
-        throw std::logic_error("process " + std::to_string(me) + " holds other copies of process " + std::to_string(r) +
-                               "'s particles than that process refreshes");
-      halo_send_[r] = Vector<std::uint32_t>(send[r].begin(), send[r].end());
-      halo_receive_[r] = Vector<std::uint32_t>(receive[r].begin(), receive[r].end());
+        throw std::logic_error("process " + std::to_string(process()) + " holds other copies of process " +
+                               std::to_string(r) + "'s particles than that process refreshes");
     }
-    mark_near_particles(position, owner);
-    measure_balance();
+  }
+
+  // A dummy is listed (kListed, DummyVisibility) where some moving particle of the whole run lists
+  // it; that particle's owner holds the dummy, which lies within one list radius of its slab. So
+  // each process sends its flags of the dummies it holds to their owners, which add them up: the
+  // owner computes the dummy's values (SolidBoundaryWater, SolidBoundarySoil) where one process
+  // would, and a frame shows the same.
+  void gather_listed_dummies() {
+    const int processes = transport_->processes();
+    std::vector<std::vector<char>> send(processes);
+    for (int r = 0; r < processes; ++r)
+      if (!dummy_halo_.receive[r].empty()) ParticleRows<Backend>::pack(dummy_flags_, dummy_halo_.receive[r], send[r]);
+    const auto received = transport_->exchange(send);
+    thrust::host_vector<std::uint8_t> flags(dummy_flags_.begin(), dummy_flags_.end());
+    for (int r = 0; r < processes; ++r) {
+      const thrust::host_vector<std::uint32_t> rows(dummy_halo_.send[r].begin(), dummy_halo_.send[r].end());
+      std::size_t offset = 0;
+      const auto listed = ParticleRows<Backend>::template read<std::uint8_t>(received[r], offset, rows.size());
+      for (std::size_t m = 0; m < rows.size(); ++m) flags[rows[m]] |= std::uint8_t(listed[m] & kListed);
+    }
+    dummy_flags_ = flags;
   }
 
   // The work of every process at this rebuild (LoadBalance, partition.h): the list entries of the
@@ -1120,48 +1189,54 @@ class Simulation final : public Engine {
     return cut_again_ = true;
   }
 
-  // What this process's own particles read, through one evaluation, of its copies and dummies
-  // (the halo's reasoning, DistributedEngine): the gradients of the particles within one list
-  // radius of the slab, and the values of the dummies within two, which those gradients read;
-  // both widened by the skin, by which particles move between rebuilds. The copies farther out
-  // skip the gradient passes (launch_near); the dummies farther out rest as unlisted ones do
-  // (SolidBoundaryWater, SolidBoundarySoil), and a frame computes them if it shows them.
-  void mark_near_particles(const thrust::host_vector<V>& position, const thrust::host_vector<std::uint32_t>& owner) {
-    const std::uint32_t me = process();
-    const double list_radius = 2.0 * kListRadius * config_.h, skin = 2.0 * (kListRadius - 1.0) * config_.h;
-    std::vector<std::uint8_t> near(std::max<std::size_t>(moving_, 1), 0);
-    for (std::uint32_t k = 0; k < moving_; ++k)
-      near[k] = owner[k] == me || slabs_.distance_to(int(me), double(position[k][slabs_.axis])) <= list_radius + skin;
-    near_ = near;
-    const thrust::host_vector<V> dummy_position(position_.begin() + moving_, position_.begin() + active_);
-    thrust::host_vector<std::uint8_t> flags(dummy_flags_.begin() + moving_, dummy_flags_.begin() + active_);
-    for (std::size_t k = 0; k < flags.size(); ++k)
-      if (slabs_.distance_to(int(me), double(dummy_position[k][slabs_.axis])) > 2.0 * list_radius + skin)
-        flags[k] &= std::uint8_t(~kListed);
-    thrust::copy(flags.begin(), flags.end(), dummy_flags_.begin() + moving_);
-  }
-
-  // At the half step and at the end of a step: every copy takes its owner's values of every array
-  // (the owners have reached the same point of the same step).
-  void refresh_halo() {
+  // Sends the owners' values of some arrays to their copies: for_each_array(f) calls
+  // f(array, rows) for each array with the HaloRows of its copies. Every process makes the same
+  // calls in the same order.
+  template <typename ForEach>
+  void send_to_copies(ForEach&& for_each_array) {
     if (!transport_) return;
     const int processes = transport_->processes();
     std::vector<std::vector<char>> send(processes);
     for (int r = 0; r < processes; ++r)
-      if (!halo_send_[r].empty())
-        for_each_particle_array([&](auto& array) { ParticleRows<Backend>::pack(array, halo_send_[r], send[r]); });
+      for_each_array([&](auto& array, const HaloRows& rows) {
+        if (!rows.send[r].empty()) ParticleRows<Backend>::pack(array, rows.send[r], send[r]);
+      });
     const auto received = transport_->exchange(send);
     for (int r = 0; r < processes; ++r) {
-      if (halo_receive_[r].empty()) continue;
       std::size_t offset = 0;
-      for_each_particle_array([&](auto& array) {
+      for_each_array([&](auto& array, const HaloRows& rows) {
+        if (rows.receive[r].empty()) return;
         using T = typename std::decay_t<decltype(array)>::value_type;
         ParticleRows<Backend>::scatter(
-            array, halo_receive_[r], ParticleRows<Backend>::template read<T>(received[r], offset, halo_receive_[r].size()));
+            array, rows.receive[r], ParticleRows<Backend>::template read<T>(received[r], offset, rows.receive[r].size()));
       });
       if (offset != received[r].size())
         throw std::logic_error("process " + std::to_string(r) + " sent more than the copies it refreshes");
     }
+  }
+
+  // At the half step and at the end of a step: every copy of a moving particle takes its owner's
+  // values of every array (the owners have reached the same point of the same step).
+  void refresh_halo() {
+    send_to_copies([&](auto&& send) { for_each_particle_array([&](auto& array) { send(array, moving_halo_); }); });
+  }
+
+  // The dummies' values, computed by their owners (boundary_values), for the passes that read them.
+  void send_dummy_values() {
+    send_to_copies([&](auto&& send) {
+      send(water_density_, dummy_halo_), send(pressure_, dummy_halo_), send(velocity_, dummy_halo_);
+      if (!has_soil_) return;
+      send(dummy_pore_pressure_, dummy_block_halo_), send(dummy_stress_, dummy_block_halo_);
+      send(dummy_velocity_, dummy_block_halo_);
+    });
+  }
+
+  // The soil's renormalised gradients (Eq. 25), seepage discharge and conductivity (Eq. 27b), for
+  // the interactions.
+  void send_pore_water_gradients() {
+    send_to_copies([&](auto&& send) {
+      send(water_density_gradient_, soil_halo_), send(seepage_, soil_halo_), send(conductivity_, soil_halo_);
+    });
   }
 
   void save_step_start() {
@@ -1214,8 +1289,8 @@ class Simulation final : public Engine {
   Transport* transport_ = nullptr;  // a run split over processes (partition.h); null for one process
   Slabs slabs_;
   Vector<std::uint32_t> owner_;     // with a transport: per particle, the process that owns it
-  Vector<std::uint8_t> near_;       // with a transport: per moving particle, 1 where its gradients are read
-  std::vector<Vector<std::uint32_t>> halo_send_, halo_receive_;  // per process: rows (map_halo)
+  // With a transport: the copies' rows (map_halo), of all moving particles, the water's, the soil's, the dummies'.
+  HaloRows moving_halo_, water_halo_, soil_halo_, dummy_halo_, dummy_block_halo_;
   LoadBalance balance_;             // with a transport: measured at every rebuild (measure_balance)
   bool cut_again_ = false;          // the slabs were cut again for the coming rebuild (cut_where_balanced)
 };

@@ -107,6 +107,8 @@ std::string run_summary_json(const RunSummary& s) {
   j += "  \"particle_steps_per_second\": " + json_number(s.particle_steps_per_second) + ",\n";
   j += "  \"bytes_per_particle\": " + json_number(s.bytes_per_particle) + ",\n";
   j += "  \"lost_particles\": " + std::to_string(s.lost_particles) + ",\n";
+  j += "  \"outputs\": {\"frames\": " + std::to_string(s.frames_written) +
+       ", \"seconds\": " + json_number(s.output_seconds) + "},\n";
   if (s.processes > 1) {
     j += "  \"processes\": " + std::to_string(s.processes) + ",\n";
     j += "  \"process_particles\": [";

@@ -36,6 +36,10 @@ struct RunSummary {
   double bytes_per_particle = 0.0;         // device memory of the particle arrays / total
   int processes = 1;                       // a run split over processes (mpirun): how many,
   std::vector<std::uint64_t> process_particles;  // and the particles each held at the end,
+  // The frames written (fields.h5, VTK, snapshots) and the wall time of the outputs: taking the
+  // frames (split over processes, gathering them to process 0) and the probes, and writing them.
+  std::uint64_t frames_written = 0;
+  double output_seconds = 0;
   double exchange_seconds = 0;    // the wall time of the steps' exchanges (the slowest process's),
   std::uint64_t exchange_bytes = 0;  // and the bytes all processes sent in them
   // How evenly they shared the work (LoadBalance, server/core/partition.h), over the list

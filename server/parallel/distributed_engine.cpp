@@ -74,21 +74,10 @@ void place_state_rows(const EngineState& rows, EngineState& whole, std::vector<c
 
 }  // namespace
 
-double halo_width(const EngineConfig& config, const HostParticles& whole) {
-  const int dim = whole.dimensions;
-  double ghost_reach = 0;
-  for (std::size_t i = 0; i < whole.size(); ++i) {
-    if (whole.phase[i] != Phase::boundary) continue;
-    double r2 = 0;
-    for (int a = 0; a < dim; ++a) {
-      const double d = whole.ghost[i * dim + a] - whole.position[i * dim + a];
-      r2 += d * d;
-    }
-    ghost_reach = std::max(ghost_reach, std::sqrt(r2));
-  }
+double halo_width(const EngineConfig& config) {
   const double list_radius = 2.0 * kListRadius * config.h;
   const double skin = 2.0 * (kListRadius - 1.0) * config.h;
-  return 4.0 * list_radius + ghost_reach + skin;
+  return list_radius + skin;
 }
 
 Slabs slabs_for(const EngineConfig& config, const HostParticles& whole, int processes) {
@@ -120,7 +109,7 @@ Slabs slabs_for(const EngineConfig& config, const HostParticles& whole, int proc
     const std::size_t k = x.size() * std::size_t(r) / std::size_t(processes);
     slabs.cut[r] = 0.5 * (x[k - 1] + x[k]);  // between two particles
   }
-  slabs.halo = halo_width(config, whole);
+  slabs.halo = halo_width(config);
   return slabs;
 }
 
@@ -131,9 +120,9 @@ DistributedEngine::DistributedEngine(const EngineConfig& config, const HostParti
       particles_(whole.size()),
       share_(start_share(whole, nullptr)) {}
 
-// This process's share to start from: the moving particles it owns and the dummies within its
-// halo (the engine sends the copies itself, Simulation::share_particles), with their rows of
-// `checkpoint` (whole run, by id) where the share starts from one.
+// This process's share to start from: the moving particles it owns and the dummies it holds
+// (Slabs::holds_dummy; the engine sends the copies itself, Simulation::share_particles), with
+// their rows of `checkpoint` (whole run, by id) where the share starts from one.
 std::unique_ptr<Engine> DistributedEngine::start_share(const HostParticles& whole, const EngineState* checkpoint) {
   const int dim = whole.dimensions;
   const int me = transport_.process();
@@ -146,8 +135,10 @@ std::unique_ptr<Engine> DistributedEngine::start_share(const HostParticles& whol
   std::vector<std::size_t> rows;
   for (std::size_t i = 0; i < whole.size(); ++i) {
     const double x = whole.position[i * dim + slabs_.axis];
-    const int owner = slabs_.owner_of(x);
-    const bool held = whole.phase[i] == Phase::boundary ? slabs_.distance_to(me, x) < slabs_.halo : owner == me;
+    const bool dummy = whole.phase[i] == Phase::boundary;
+    const double ghost_x = dummy ? whole.ghost[i * dim + slabs_.axis] : x;
+    const int owner = slabs_.owner_of(ghost_x);
+    const bool held = dummy ? slabs_.holds_dummy(me, x, ghost_x) : owner == me;
     if (!held) continue;
     for (int a = 0; a < dim; ++a) {
       share.position.push_back(whole.position[i * dim + a]);
@@ -241,12 +232,11 @@ FieldFrame DistributedEngine::gather_frame(bool everywhere) const {
   for (int r = 0; r < transport_.processes(); ++r)
     if (everywhere || r == 0) send[r] = message.bytes;
   const auto received = transport_.exchange(send);
-  if (!everywhere && me != 0) return {};
-
   FieldFrame whole;
   whole.time = own.time;
   whole.step = own.step;
   whole.dimensions = own.dimensions;
+  if (!everywhere && me != 0) return whole;
   const std::size_t n = particles_;
   whole.position.assign(3 * n, 0.0);
   whole.phase.assign(n, 0);

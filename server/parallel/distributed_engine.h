@@ -14,17 +14,16 @@
 namespace cascade {
 
 // The slabs of a run over `processes`: along the axis, not periodic, on which the moving particles
-// spread farthest, cut so that
-// each holds as many moving particles as the others (within one), with the halo that one rate
-// evaluation reads around an owned particle (halo_width).
+// spread farthest, cut so that each holds as many moving particles as the others (within one),
+// with the halo that one pass reads around an owned particle or ghost node (halo_width).
 Slabs slabs_for(const EngineConfig& config, const HostParticles& whole, int processes);
 
-// The width of the halo: four list radii (2h and the skin, neighbour_list.h) — an owned particle's
-// rates read its neighbours' renormalised gradients, which read the dummies near them, whose
-// boundary values read the particles around their ghost nodes, whose pore-water state reads their
-// free-surface flags, each within a list radius of the last — plus the farthest a dummy's ghost
-// node lies from it, plus the skin, by which particles may move between rebuilds of the halo.
-double halo_width(const EngineConfig& config, const HostParticles& whole);
+// The width of the halo: one list radius (2h and the skin, neighbour_list.h), within which an
+// owned particle's list and a ghost node's search (the same radius) find their neighbours, plus
+// the skin, by which particles may move between rebuilds of the halo. Each pass's results reach
+// the copies from their owners before a later pass reads them (Simulation::evaluate_rates), so
+// one radius suffices for the whole evaluation.
+double halo_width(const EngineConfig& config);
 
 class DistributedEngine final : public Engine {
  public:
@@ -38,10 +37,9 @@ class DistributedEngine final : public Engine {
   std::size_t particle_count() const override { return particles_; }
   std::size_t lost_particles() const override;
   std::size_t device_bytes() const override;
-  FieldFrame frame() const override;  // the whole run's, on every process
-  // The whole run's on process 0, an empty frame on the others (what a split server's other
-  // processes take part in: they show no frame).
-  FieldFrame frame_at_process_0() const;
+  FieldFrame frame() const override;  // the whole run's, on every process (a stage's criteria read it)
+  // The whole run's on process 0; on the others a frame with the time and step and no particles.
+  FieldFrame frame_at_process_0() const override;
   const char* device_name() const override { return share_->device_name(); }
   void set_forcing(const HydraulicForcing& forcing) override { share_->set_forcing(forcing); }
   HydraulicForcing forcing() const override { return share_->forcing(); }

@@ -8,7 +8,7 @@ Registered only in builds with CASCADE_MPI (tests/CMakeLists.txt).
 Tolerances: each process lists a particle's neighbours in the order of its own share, so sums are
 taken in another order and the runs agree to round-off, not to the bit: positions within 1e-9 dp,
 every other field within 1e-7 of its range over the frame (tests/parallel/test_split_run.cpp
-shows the same bounds fail for a halo one list radius wide).
+shows the same bounds fail where a copy misses a pass's results).
 """
 
 import json

@@ -8,11 +8,14 @@
 //  - Round-off: every particle's position within 1e-9 dp, every field within 1e-7 of its range
 //    over the frame, the total momentum within 1e-9 of Σ m |v|, as in one process, up to the
 //    round-off of sums taken in another order (each process lists a particle's neighbours in the
-//    order of its own share). A halo that misses what an evaluation reads fails this at once:
-//    with a halo one list radius wide (and no ghost reach), the dam break at dp = a/20 on 2
-//    processes was off by 6.5e-6 dp after 260 steps and by 5.8e-4 dp and 3.2e-4 of the density's
-//    range at t = 0.1 s (measured when written), against 1e-13 and 1e-12 with the halo of
-//    DistributedEngine.
+//    order of its own share). A copy that misses what an evaluation reads fails this at once:
+//    with a halo one list radius wide before the passes' results were sent to the copies (each
+//    process computed its copies' gradients itself), the dam break at dp = a/20 on 2 processes was
+//    off by 6.5e-6 dp after 260 steps and by 5.8e-4 dp and 3.2e-4 of the density's range at
+//    t = 0.1 s, against 1e-13 and 1e-12 with the halo of DistributedEngine; with the free water's
+//    pressures sent after the pore water's gradients (which read them) instead of before, the
+//    submerged layer's seepage on 4 processes was off by 3.5e-2 of its range (measured when
+//    written).
 //  - The dam break's surge front within 1% of the tank's length up to T = 3 (issue 17), after the
 //    round-off has grown (it grows in the splash, so the round-off checks stop at t = 0.1 s there).
 //  - Nothing lost: every particle owned by exactly one process in every frame
@@ -140,8 +143,8 @@ void compare_with_one_process(const std::string& case_file, const std::string& c
   };
   const std::string reference = "the same run in one process (cascade run without mpirun)";
   const std::string source =
-      "round-off: each process sums a particle's neighbours in the order of its own share (a halo one list radius "
-      "wide fails it, the test file's header)";
+      "round-off: each process sums a particle's neighbours in the order of its own share (a copy that misses a "
+      "pass's results fails it, the test file's header)";
   validate({.case_name = case_name, .reference = reference,
             .metric = "largest |x − x_one process| / dp" + to(round_off_frames, round_off_until),
             .measured = worst.position, .reference_value = 1e-9, .bound = testing::Bound::at_most,
