@@ -912,8 +912,8 @@ class Simulation final : public Engine {
   }
 
   // Every array with one value per particle, in the same order on every process: what a
-  // particle that changes process takes along and what a copy is refreshed with. The dummies'
-  // soil-side arrays and the lists are each process's own.
+  // particle that changes process takes along and what a copy starts from at a rebuild
+  // (share_particles). The dummies' soil-side arrays and the lists are each process's own.
   template <typename F>
   void for_each_particle_array(F&& f) {
     f(position_), f(velocity_), f(ghost_), f(acceleration_), f(water_density_gradient_);
@@ -1216,9 +1216,25 @@ class Simulation final : public Engine {
   }
 
   // At the half step and at the end of a step: every copy of a moving particle takes its owner's
-  // values of every array (the owners have reached the same point of the same step).
+  // values of the arrays that change in a step and that a pass reads of it (the owners have
+  // reached the same point of the same step).
   void refresh_halo() {
-    send_to_copies([&](auto&& send) { for_each_particle_array([&](auto& array) { send(array, moving_halo_); }); });
+    send_to_copies([&](auto&& send) { for_each_refreshed_array([&](auto& array) { send(array, moving_halo_); }); });
+  }
+
+  // The arrays refresh_halo sends: what the passes read of a neighbour (its state; its pressure,
+  // gradients, free surface and discharge are sent as they are computed), and what a copy's own
+  // pore-water state is computed from (PoreWaterState: the pore water, porosity, surface state,
+  // free surface and last discharge). A copy's other arrays are constant between rebuilds (phase,
+  // id, owner, material, listed position: share_particles sends them whole) or the results of
+  // passes whose values on a copy nothing reads before the next refresh (its rates and step-start
+  // values, which integrate it).
+  template <typename F>
+  void for_each_refreshed_array(F&& f) {
+    f(position_), f(velocity_), f(density_), f(water_density_);
+    if (!has_soil_) return;
+    f(porosity_), f(saturation_), f(effective_stress_), f(surface_state_), f(free_surface_), f(seepage_);
+    f(skeleton_acceleration_);
   }
 
   // The dummies' values, computed by their owners (boundary_values), for the passes that read them.
