@@ -1,8 +1,10 @@
 // Rows of the per-particle arrays, for a run split over processes (partition.h): some particles'
 // values of every array copied into bytes and back. A message holds one block per array, in the
 // order Simulation::for_each_particle_array lists them, each the rows' values one after another;
-// every process lists the same arrays, so the blocks need no names. Host-staged: the rows are
-// gathered on the backend and copied through the host (issue 17 allows it for the CUDA backend).
+// every process lists the same arrays, so the blocks need no names. On the CPU the rows are copied
+// straight between the arrays and the message, without a buffer of their own (a step exchanges
+// several times); on a GPU they are gathered on the device and staged through the host (issue 17
+// allows it for the CUDA backend).
 #pragma once
 
 #include <thrust/copy.h>
@@ -13,6 +15,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "server/core/backend.h"
@@ -24,10 +27,20 @@ template <typename Backend>
 struct ParticleRows {
   template <typename T>
   using Vector = typename Backend::template Vector<T>;
+  static constexpr bool kHostMemory = std::is_same_v<Backend, OmpBackend>;
 
   // Appends the values of `array` at `rows` to `bytes`.
   template <typename T>
   static void pack(const Vector<T>& array, const Vector<std::uint32_t>& rows, std::vector<char>& bytes) {
+    if constexpr (kHostMemory) {
+      const std::size_t at = bytes.size();
+      bytes.resize(at + rows.size() * sizeof(T));
+      const T* values = thrust::raw_pointer_cast(array.data());
+      const std::uint32_t* row = thrust::raw_pointer_cast(rows.data());
+      for (std::size_t k = 0; k < rows.size(); ++k)  // the message's bytes need not be aligned for T
+        std::memcpy(bytes.data() + at + k * sizeof(T), values + row[k], sizeof(T));
+      return;
+    }
     Vector<T> picked(rows.size());
     thrust::gather(Backend::policy(), rows.begin(), rows.end(), array.begin(), picked.begin());
     std::vector<T> host(picked.size());
@@ -53,6 +66,24 @@ struct ParticleRows {
   static void scatter(Vector<T>& array, const Vector<std::uint32_t>& rows, const std::vector<T>& values) {
     const Vector<T> staged(values.begin(), values.end());
     thrust::scatter(Backend::policy(), staged.begin(), staged.end(), rows.begin(), array.begin());
+  }
+
+  // array[rows[k]] = the next rows.size() values of type T in `bytes` from `offset`, which it
+  // advances: what pack wrote.
+  template <typename T>
+  static void unpack(Vector<T>& array, const Vector<std::uint32_t>& rows, const std::vector<char>& bytes,
+                     std::size_t& offset) {
+    if constexpr (kHostMemory) {
+      if (offset + rows.size() * sizeof(T) > bytes.size())
+        throw std::runtime_error("a message between processes is shorter than the rows it announces");
+      T* values = thrust::raw_pointer_cast(array.data());
+      const std::uint32_t* row = thrust::raw_pointer_cast(rows.data());
+      for (std::size_t k = 0; k < rows.size(); ++k)
+        std::memcpy(static_cast<void*>(values + row[k]), bytes.data() + offset + k * sizeof(T), sizeof(T));
+      offset += rows.size() * sizeof(T);
+      return;
+    }
+    scatter(array, rows, read<T>(bytes, offset, rows.size()));
   }
 
   // Keeps the rows `rows` of `array`, in that order, and appends `values` after them.

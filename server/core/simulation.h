@@ -1205,36 +1205,31 @@ class Simulation final : public Engine {
     for (int r = 0; r < processes; ++r) {
       std::size_t offset = 0;
       for_each_array([&](auto& array, const HaloRows& rows) {
-        if (rows.receive[r].empty()) return;
-        using T = typename std::decay_t<decltype(array)>::value_type;
-        ParticleRows<Backend>::scatter(
-            array, rows.receive[r], ParticleRows<Backend>::template read<T>(received[r], offset, rows.receive[r].size()));
+        if (!rows.receive[r].empty()) ParticleRows<Backend>::unpack(array, rows.receive[r], received[r], offset);
       });
       if (offset != received[r].size())
         throw std::logic_error("process " + std::to_string(r) + " sent more than the copies it refreshes");
     }
   }
 
-  // At the half step and at the end of a step: every copy of a moving particle takes its owner's
-  // values of the arrays that change in a step and that a pass reads of it (the owners have
-  // reached the same point of the same step).
-  void refresh_halo() {
-    send_to_copies([&](auto&& send) { for_each_refreshed_array([&](auto& array) { send(array, moving_halo_); }); });
-  }
-
-  // The arrays refresh_halo sends: what the passes read of a neighbour (its state; its pressure,
-  // gradients, free surface and discharge are sent as they are computed), and what a copy's own
+  // At the half step and at the end of a step (the owners have reached the same point of the same
+  // step), every copy of a moving particle takes its owner's values of what changes in a step and
+  // is read of it: what the passes read of a neighbour (its state; its pressure, gradients, free
+  // surface and discharge are also sent as they are computed), and what a soil copy's own
   // pore-water state is computed from (PoreWaterState: the pore water, porosity, surface state,
   // free surface and last discharge). A copy's other arrays are constant between rebuilds (phase,
   // id, owner, material, listed position: share_particles sends them whole) or the results of
   // passes whose values on a copy nothing reads before the next refresh (its rates and step-start
   // values, which integrate it).
-  template <typename F>
-  void for_each_refreshed_array(F&& f) {
-    f(position_), f(velocity_), f(density_), f(water_density_);
-    if (!has_soil_) return;
-    f(porosity_), f(saturation_), f(effective_stress_), f(surface_state_), f(free_surface_), f(seepage_);
-    f(skeleton_acceleration_);
+  void refresh_halo() {
+    send_to_copies([&](auto&& send) {
+      send(position_, moving_halo_), send(velocity_, moving_halo_), send(density_, moving_halo_);
+      send(water_density_, moving_halo_);
+      if (!has_soil_) return;
+      send(porosity_, soil_halo_), send(saturation_, soil_halo_), send(effective_stress_, soil_halo_);
+      send(surface_state_, soil_halo_), send(free_surface_, soil_halo_), send(seepage_, soil_halo_);
+      send(skeleton_acceleration_, soil_halo_);
+    });
   }
 
   // The dummies' values, computed by their owners (boundary_values), for the passes that read them.
