@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -115,9 +116,10 @@ const char* precision_name(Precision p) { return p == Precision::single_precisio
 // of the run.
 //
 // In a run split over processes (`transport`), every process takes part in gathering the frames
-// to process 0 (Engine::frame_at_process_0), which alone samples the probes, finds the events and
-// writes the files; whether it could is agreed on by all, so that a failed write stops every
-// process.
+// to process 0 (Engine::frame_at_process_0), which alone writes the files. The probes and events
+// need no gathering: each process sends process 0 the parts of its own particles (a few numbers
+// per probe: ProbeSampler::parts, CascadeEventDetector::part), which combines them. Whether
+// process 0 could write is agreed on by all, so that a failed write stops every process.
 class Outputs {
  public:
   Outputs(const v1::ScenarioSpec& spec, const std::filesystem::path& dir, double h, double mass,
@@ -153,30 +155,27 @@ class Outputs {
     const bool probe_due = force ? t != last_probe_time_ : t >= next_probe_ - probe_slack;
     if (!frame_due && !probe_due) return {};
     const auto started = std::chrono::steady_clock::now();
-    const FieldFrame frame = engine.frame_at_process_0();
     std::vector<CascadeEvent> fired;
     std::string failure;
-    try {
-      if (probe_due) {
-        if (!transport_ || transport_->process() == 0) {  // the other processes' frames hold no particles
-          const std::vector<double> values = sampler_.sample(frame);
-          if (probes_) probes_->write_row(t, values);
-          fired = events_.observe(frame, values, engine.forcing().ponding_pressure);
-        }
-        next_probe_ = next_due_time(next_probe_, t, probe_interval_);
-        last_probe_time_ = t;
-      }
-      if (frame_due) {
+    FieldFrame frame;
+    if (frame_due) frame = engine.frame_at_process_0();
+    if (probe_due) {
+      fired = sample_probes(engine, frame_due && !transport_ ? &frame : nullptr, failure);
+      next_probe_ = next_due_time(next_probe_, t, probe_interval_);
+      last_probe_time_ = t;
+    }
+    if (frame_due) {
+      try {
         if (hdf5_) hdf5_->write(frame);
         if (vtk_) vtk_->write(frame);
         if (snapshots_) snapshots_->write(frame);
-        next_frame_ = next_due_time(next_frame_, t, frame_interval_);
-        last_frame_time_ = t;
-        ++frames_;
+      } catch (const std::exception& e) {
+        if (!transport_) throw;
+        if (failure.empty()) failure = e.what();
       }
-    } catch (const std::exception& e) {
-      failure = e.what();
-      if (!transport_) throw;
+      next_frame_ = next_due_time(next_frame_, t, frame_interval_);
+      last_frame_time_ = t;
+      ++frames_;
     }
     if (transport_ && transport_->maximum(failure.empty() ? 0.0 : 1.0) > 0)
       throw std::runtime_error(failure.empty() ? "process 0 could not write the outputs" : failure);
@@ -188,6 +187,60 @@ class Outputs {
   double seconds() const { return seconds_; }  // in observe: taking the frames, sampling, writing
 
  private:
+  // The probes' row and the events that fire, from every process's part of them. A process that
+  // cannot take its part sends an empty message (a part never is) and sets `failure`. `whole`: the
+  // whole run's frame, where one process has taken it already.
+  std::vector<CascadeEvent> sample_probes(const Engine& engine, const FieldFrame* whole, std::string& failure) {
+    const int me = transport_ ? transport_->process() : 0;
+    std::vector<double> numbers;
+    try {
+      const FieldFrame local = whole ? FieldFrame() : engine.local_frame();
+      const FieldFrame& mine = whole ? *whole : local;
+      const std::vector<char> owned = owned_rows(mine, me);
+      numbers = ProbeSampler::flatten(sampler_.parts(mine, &owned));
+      numbers.insert(numbers.begin(), double(numbers.size()));
+      const std::vector<double> event_numbers =
+          CascadeEventDetector::flatten(events_.part(mine, engine.forcing().ponding_pressure, &owned));
+      numbers.insert(numbers.end(), event_numbers.begin(), event_numbers.end());
+    } catch (const std::exception& e) {
+      if (!transport_) throw;
+      failure = e.what();
+      numbers.clear();
+    }
+    std::vector<std::vector<char>> received;
+    if (transport_) {
+      std::vector<std::vector<char>> send(transport_->processes());
+      send[0].resize(numbers.size() * sizeof(double));
+      std::memcpy(send[0].data(), numbers.data(), send[0].size());
+      received = transport_->exchange(send);
+    }
+    if (me != 0) return {};
+    try {
+      std::vector<std::vector<ProbeSampler::Part>> probe_parts;
+      std::vector<CascadeEventDetector::Part> event_parts;
+      const auto take = [&](const std::vector<double>& part, int process) {
+        if (part.empty() || !(part[0] >= 0 && part[0] + 1 <= double(part.size())))
+          throw std::runtime_error("process " + std::to_string(process) + " could not sample the probes");
+        const auto middle = part.begin() + 1 + std::ptrdiff_t(part[0]);
+        probe_parts.push_back(ProbeSampler::unflatten(std::vector<double>(part.begin() + 1, middle)));
+        event_parts.push_back(CascadeEventDetector::unflatten(std::vector<double>(middle, part.end())));
+      };
+      if (!transport_) take(numbers, 0);
+      for (std::size_t r = 0; r < received.size(); ++r) {
+        std::vector<double> part(received[r].size() / sizeof(double));
+        std::memcpy(part.data(), received[r].data(), part.size() * sizeof(double));
+        take(part, int(r));
+      }
+      const std::vector<double> values = sampler_.combine(probe_parts);
+      if (probes_) probes_->write_row(engine.time(), values);
+      return events_.observe(event_parts, values, engine.forcing().ponding_pressure);
+    } catch (const std::exception& e) {
+      if (!transport_) throw;
+      if (failure.empty()) failure = e.what();
+      return {};
+    }
+  }
+
   const v1::ScenarioSpec& spec_;
   ProbeSampler sampler_;
   double frame_interval_, probe_interval_;

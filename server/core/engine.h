@@ -95,6 +95,11 @@ class Engine {
   // alone (the others get one with the time and step and no particles; process 0 writes the
   // outputs), so that a frame costs each particle one message, not one to every process.
   virtual FieldFrame frame_at_process_0() const { return frame(); }
+  // This process's particles, with no message sent: the whole run's frame in one process; split
+  // over processes, the particles it holds (those it owns and its copies of its neighbours'), whose
+  // field "process" names each one's owner (owned_rows, field_frame.h). Probes and events are
+  // sampled on it and their parts combined (ProbeSampler::combine, CascadeEventDetector::observe).
+  virtual FieldFrame local_frame() const { return frame(); }
   virtual const char* device_name() const = 0;
   // The free-surface hydraulic conditions (Eq. 39); a change applies from the next step on.
   virtual void set_forcing(const HydraulicForcing& forcing) = 0;

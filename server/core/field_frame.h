@@ -35,6 +35,16 @@ struct FieldFrame {
   }
 };
 
+// Which rows of a process's local frame (Engine::local_frame) it owns: those whose field "process"
+// is `process`, or every row of a frame without that field (one process owns the whole run).
+inline std::vector<char> owned_rows(const FieldFrame& frame, int process) {
+  const FieldFrame::RealField* owner = frame.find("process");
+  std::vector<char> owned(frame.size(), 1);
+  if (owner)
+    for (std::size_t i = 0; i < frame.size(); ++i) owned[i] = owner->values[i] == double(process);
+  return owned;
+}
+
 // The component a name suffix selects in a field of `components` values: x, y, z of a vector,
 // xx, yy, zz, xy, yz, zx of a symmetric tensor (Voigt order, as the fields hold it); −1 for none.
 inline int field_component_index(int components, const std::string& suffix) {

@@ -49,7 +49,8 @@ ProbeSampler::ProbeSampler(const v1::ScenarioSpec& spec, double h, double partic
   }
 }
 
-bool ProbeSampler::in_domain(const FieldFrame& frame, std::size_t j) const {
+bool ProbeSampler::counted(const FieldFrame& frame, const Rows* owned, std::size_t j) const {
+  if (owned && !(*owned)[j]) return false;
   for (int a = 0; a < 3; ++a) {
     const double x = frame.position[3 * j + a];
     if (!(x >= lo_[a] && x <= hi_[a])) return false;
@@ -63,19 +64,85 @@ std::vector<std::string> ProbeSampler::names() const {
   return out;
 }
 
-std::vector<double> ProbeSampler::sample(const FieldFrame& frame) const {
-  std::vector<double> out;
+std::vector<ProbeSampler::Part> ProbeSampler::parts(const FieldFrame& frame, const Rows* owned) const {
+  if (owned && owned->size() != frame.size()) throw std::invalid_argument("owned rows do not match the frame");
+  std::vector<Part> out;
   out.reserve(probes_.size());
   for (const auto& p : probes_) {
     switch (p.kind()) {
-      case v1::POINT: out.push_back(point(p, frame)); break;
-      case v1::ELEVATION: out.push_back(elevation(p, frame)); break;
-      case v1::FRONT: out.push_back(front(p, frame)); break;
+      case v1::POINT: out.push_back(point(p, frame, owned)); break;
+      case v1::ELEVATION: out.push_back(elevation(p, frame, owned)); break;
+      case v1::FRONT: out.push_back(front(p, frame, owned)); break;
       case v1::MAX:
-      case v1::MEAN: out.push_back(reduce(p, frame)); break;
+      case v1::MEAN: out.push_back(reduce(p, frame, owned)); break;
+      default: out.push_back({});
+    }
+  }
+  return out;
+}
+
+std::vector<double> ProbeSampler::combine(const std::vector<std::vector<Part>>& parts_of_processes) const {
+  for (const auto& parts : parts_of_processes)
+    if (parts.size() != probes_.size())
+      throw std::invalid_argument("parts of " + std::to_string(parts.size()) + " probes, expected " +
+                                  std::to_string(probes_.size()));
+  std::vector<double> out;
+  out.reserve(probes_.size());
+  for (std::size_t k = 0; k < probes_.size(); ++k) {
+    const v1::Probe& probe = probes_[k];
+    double sum = 0, weight = 0;
+    double best = probe.kind() == v1::FRONT && probe.minimum() ? std::numeric_limits<double>::max()
+                                                               : std::numeric_limits<double>::lowest();
+    std::vector<double> column;
+    for (const auto& parts : parts_of_processes) {
+      const Part& part = parts[k];
+      sum += part.sum;
+      weight += part.weight;
+      if (part.weight > 0)
+        best = probe.kind() == v1::FRONT && probe.minimum() ? std::min(best, part.best) : std::max(best, part.best);
+      column.insert(column.end(), part.column.begin(), part.column.end());
+    }
+    switch (probe.kind()) {
+      case v1::POINT: out.push_back(weight > 0 ? sum / weight : kNaN); break;
+      case v1::ELEVATION: out.push_back(elevation_of(std::move(column))); break;
+      case v1::FRONT: out.push_back(weight > 0 ? best - probe.origin() : kNaN); break;
+      case v1::MAX: out.push_back(weight > 0 ? best : kNaN); break;
+      case v1::MEAN: out.push_back(weight > 0 ? sum / weight : kNaN); break;
       default: out.push_back(kNaN);
     }
   }
+  return out;
+}
+
+// Per part: sum, weight, best, the column's length, the column.
+std::vector<double> ProbeSampler::flatten(const std::vector<Part>& parts) {
+  std::vector<double> numbers{double(parts.size())};
+  for (const Part& part : parts) {
+    numbers.insert(numbers.end(), {part.sum, part.weight, part.best, double(part.column.size())});
+    numbers.insert(numbers.end(), part.column.begin(), part.column.end());
+  }
+  return numbers;
+}
+
+std::vector<ProbeSampler::Part> ProbeSampler::unflatten(const std::vector<double>& numbers) {
+  std::size_t at = 0;
+  const auto take = [&](std::size_t count) {
+    if (numbers.size() - at < count) throw std::invalid_argument("probe parts cut short");
+    at += count;
+    return numbers.data() + at - count;
+  };
+  const double parts = *take(1);
+  if (!(parts >= 0 && parts == std::floor(parts))) throw std::invalid_argument("probe parts: bad count");
+  std::vector<Part> out(static_cast<std::size_t>(parts));
+  for (Part& part : out) {
+    const double* head = take(4);
+    part.sum = head[0], part.weight = head[1], part.best = head[2];
+    if (!(head[3] >= 0 && head[3] == std::floor(head[3]) && std::fmod(head[3], 4.0) == 0))
+      throw std::invalid_argument("probe parts: bad column length");
+    const double* column = take(static_cast<std::size_t>(head[3]));
+    part.column.assign(column, column + static_cast<std::size_t>(head[3]));
+  }
+  if (at != numbers.size()) throw std::invalid_argument("probe parts: numbers left over");
   return out;
 }
 
@@ -112,50 +179,59 @@ std::vector<double> ProbeSampler::scalar_field(const FieldFrame& frame, const st
   throw std::invalid_argument("no scalar field '" + name + "' in the frame");
 }
 
-double ProbeSampler::point(const v1::Probe& probe, const FieldFrame& frame) const {
+ProbeSampler::Part ProbeSampler::point(const v1::Probe& probe, const FieldFrame& frame, const Rows* owned) const {
   double x[3];
   to_frame_coordinates(probe, dimensions_, x);
   const auto values = scalar_field(frame, probe.field());
   const auto* density = frame.find("numerical_density");
   const std::uint8_t phase = phase_code(probe.phase());
-  double sum = 0, weight = 0;
+  Part part;
   for (std::size_t j = 0; j < frame.size(); ++j) {
-    if (frame.phase[j] != phase || !in_domain(frame, j)) continue;
+    if (frame.phase[j] != phase || !counted(frame, owned, j)) continue;
     const double* p = &frame.position[3 * j];
     const double r = std::sqrt((p[0] - x[0]) * (p[0] - x[0]) + (p[1] - x[1]) * (p[1] - x[1]) + (p[2] - x[2]) * (p[2] - x[2]));
     const double w = kernel(r);
     if (w <= 0) continue;
     const double volume = mass_ / (density ? density->values[j] : 1000.0);
-    sum += values[j] * w * volume;
-    weight += w * volume;
+    part.sum += values[j] * w * volume;
+    part.weight += w * volume;
   }
-  return weight > 0 ? sum / weight : kNaN;
+  return part;
 }
 
-double ProbeSampler::elevation(const v1::Probe& probe, const FieldFrame& frame) const {
+ProbeSampler::Part ProbeSampler::elevation(const v1::Probe& probe, const FieldFrame& frame, const Rows* owned) const {
   double x[3];
   to_frame_coordinates(probe, dimensions_, x);
   if (dimensions_ == 2) x[1] = 0.0;
   else if (probe.position_size() == 2) x[1] = probe.position(1);
   const auto* density = frame.find("numerical_density");
   // The water within 2h of the vertical line, the only particles the scan can see.
-  struct Near {
-    double horizontal2, z, volume;
-  };
-  std::vector<Near> column;
-  double lowest = std::numeric_limits<double>::max();
+  Part part;
   for (std::size_t j = 0; j < frame.size(); ++j) {
-    if (frame.phase[j] != 0 || !in_domain(frame, j)) continue;
+    if (frame.phase[j] != 0 || !counted(frame, owned, j)) continue;
     const double* p = &frame.position[3 * j];
     const double d2 = (p[0] - x[0]) * (p[0] - x[0]) + (dimensions_ == 3 ? (p[1] - x[1]) * (p[1] - x[1]) : 0.0);
     if (d2 >= 4 * h_ * h_) continue;
-    column.push_back({d2, p[2], mass_ / (density ? density->values[j] : 1000.0)});
-    lowest = std::min(lowest, p[2]);
+    part.column.insert(part.column.end(), {double(frame.id[j]), d2, p[2], mass_ / (density ? density->values[j] : 1000.0)});
   }
-  if (column.empty()) return kNaN;
+  return part;
+}
+
+// The scan up a column of (id, horizontal distance², z, volume) entries, taken in id order.
+double ProbeSampler::elevation_of(std::vector<double> column) const {
+  struct Near {
+    double id, horizontal2, z, volume;
+  };
+  std::vector<Near> near(column.size() / 4);
+  for (std::size_t n = 0; n < near.size(); ++n)
+    near[n] = {column[4 * n], column[4 * n + 1], column[4 * n + 2], column[4 * n + 3]};
+  if (near.empty()) return kNaN;
+  std::sort(near.begin(), near.end(), [](const Near& a, const Near& b) { return a.id < b.id; });
+  double lowest = std::numeric_limits<double>::max();
+  for (const Near& n : near) lowest = std::min(lowest, n.z);
   auto fraction = [&](double z) {
     double c = 0;
-    for (const auto& n : column) c += n.volume * kernel(std::sqrt(n.horizontal2 + (n.z - z) * (n.z - z)));
+    for (const auto& n : near) c += n.volume * kernel(std::sqrt(n.horizontal2 + (n.z - z) * (n.z - z)));
     return c;
   };
   const double step = 0.1 * h_;
@@ -168,33 +244,32 @@ double ProbeSampler::elevation(const v1::Probe& probe, const FieldFrame& frame) 
   return kNaN;
 }
 
-double ProbeSampler::front(const v1::Probe& probe, const FieldFrame& frame) const {
+ProbeSampler::Part ProbeSampler::front(const v1::Probe& probe, const FieldFrame& frame, const Rows* owned) const {
   const int axis = probe.axis() == "x" ? 0 : probe.axis() == "y" ? (dimensions_ == 2 ? 2 : 1) : 2;
   const std::uint8_t phase = phase_code(probe.phase());
-  double best = probe.minimum() ? std::numeric_limits<double>::max() : std::numeric_limits<double>::lowest();
-  bool any = false;
+  Part part;
+  part.best = probe.minimum() ? std::numeric_limits<double>::max() : std::numeric_limits<double>::lowest();
   for (std::size_t j = 0; j < frame.size(); ++j) {
-    if (frame.phase[j] != phase || !in_domain(frame, j)) continue;
+    if (frame.phase[j] != phase || !counted(frame, owned, j)) continue;
     const double c = frame.position[3 * j + axis];
-    best = probe.minimum() ? std::min(best, c) : std::max(best, c);
-    any = true;
+    part.best = probe.minimum() ? std::min(part.best, c) : std::max(part.best, c);
+    part.weight += 1;
   }
-  return any ? best - probe.origin() : kNaN;
+  return part;
 }
 
-double ProbeSampler::reduce(const v1::Probe& probe, const FieldFrame& frame) const {
+ProbeSampler::Part ProbeSampler::reduce(const v1::Probe& probe, const FieldFrame& frame, const Rows* owned) const {
   const auto values = scalar_field(frame, probe.field());
   const std::uint8_t phase = phase_code(probe.phase());
-  double best = std::numeric_limits<double>::lowest(), sum = 0;
-  std::size_t count = 0;
+  Part part;
+  part.best = std::numeric_limits<double>::lowest();
   for (std::size_t j = 0; j < frame.size(); ++j) {
-    if (frame.phase[j] != phase || !in_domain(frame, j)) continue;
-    best = std::max(best, values[j]);
-    sum += values[j];
-    ++count;
+    if (frame.phase[j] != phase || !counted(frame, owned, j)) continue;
+    part.best = std::max(part.best, values[j]);
+    part.sum += values[j];
+    part.weight += 1;
   }
-  if (count == 0) return kNaN;
-  return probe.kind() == v1::MAX ? best : sum / double(count);
+  return part;
 }
 
 }  // namespace cascade

@@ -9,6 +9,9 @@
 // Fields are named as scalar_field() describes.
 // A probe with nothing to measure (no particle of its phase near it) gives NaN. Particles that
 // have left the domain are ignored.
+// A run split over processes samples its probes without gathering its particles: each process
+// takes the parts of its own particles (parts), a few numbers per probe, and process 0 combines
+// them (combine) into the values that all particles give. One process takes the same path.
 #pragma once
 
 #include <string>
@@ -25,7 +28,25 @@ class ProbeSampler {
   ProbeSampler(const v1::ScenarioSpec& spec, double h, double particle_mass);
 
   std::vector<std::string> names() const;
-  std::vector<double> sample(const FieldFrame& frame) const;
+  std::vector<double> sample(const FieldFrame& frame) const { return combine({parts(frame)}); }
+
+  // What some particles give one probe.
+  struct Part {
+    double sum = 0, weight = 0;  // point: Σ f W V and Σ W V; mean: Σ f and the count; front, max: the count
+    double best = 0;             // front, max: the largest (front: or smallest) coordinate or value
+    std::vector<double> column;  // elevation: id, horizontal distance², z and volume of each water
+                                 // particle within 2h of the line
+  };
+  // The parts of the rows of `frame` that `owned` marks (one entry per row; null: every row), one
+  // per probe.
+  std::vector<Part> parts(const FieldFrame& frame, const std::vector<char>* owned = nullptr) const;
+  // The probes' values from the parts of every process: the sums added, the extremes taken, an
+  // elevation's columns joined in id order (the order of one process's frame).
+  std::vector<double> combine(const std::vector<std::vector<Part>>& parts_of_processes) const;
+  // The parts as numbers for a message, and back; unflatten throws std::invalid_argument on a
+  // message that is not `flatten`'s.
+  static std::vector<double> flatten(const std::vector<Part>& parts);
+  static std::vector<Part> unflatten(const std::vector<double>& numbers);
 
   // One scalar per particle for a probe field name: a one-component field of the frame by its
   // name (pressure, density, pore_pressure, saturation, porosity, plastic_strain, ...),
@@ -36,12 +57,15 @@ class ProbeSampler {
   static std::vector<double> scalar_field(const FieldFrame& frame, const std::string& name);
 
  private:
-  double point(const v1::Probe& probe, const FieldFrame& frame) const;
-  double elevation(const v1::Probe& probe, const FieldFrame& frame) const;
-  double front(const v1::Probe& probe, const FieldFrame& frame) const;
-  double reduce(const v1::Probe& probe, const FieldFrame& frame) const;
+  using Rows = std::vector<char>;
+  Part point(const v1::Probe& probe, const FieldFrame& frame, const Rows* owned) const;
+  Part elevation(const v1::Probe& probe, const FieldFrame& frame, const Rows* owned) const;
+  Part front(const v1::Probe& probe, const FieldFrame& frame, const Rows* owned) const;
+  Part reduce(const v1::Probe& probe, const FieldFrame& frame, const Rows* owned) const;
+  double elevation_of(std::vector<double> column) const;
   double kernel(double r) const;
-  bool in_domain(const FieldFrame& frame, std::size_t j) const;
+  // Whether row j is counted: owned by this process and within the domain.
+  bool counted(const FieldFrame& frame, const Rows* owned, std::size_t j) const;
 
   std::vector<v1::Probe> probes_;
   int dimensions_;

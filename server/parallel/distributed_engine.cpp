@@ -205,6 +205,8 @@ FieldFrame DistributedEngine::frame() const { return gather_frame(true); }
 
 FieldFrame DistributedEngine::frame_at_process_0() const { return gather_frame(false); }
 
+FieldFrame DistributedEngine::local_frame() const { return share_->frame(); }
+
 // Each process sends the particles it owns (its share's frame, field "process") to every other,
 // or to process 0 alone, and each that receives puts them together by id: the whole run's frame,
 // as one process would give it.

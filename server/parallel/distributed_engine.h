@@ -40,6 +40,7 @@ class DistributedEngine final : public Engine {
   FieldFrame frame() const override;  // the whole run's, on every process (a stage's criteria read it)
   // The whole run's on process 0; on the others a frame with the time and step and no particles.
   FieldFrame frame_at_process_0() const override;
+  FieldFrame local_frame() const override;  // the share's, with the field "process"
   const char* device_name() const override { return share_->device_name(); }
   void set_forcing(const HydraulicForcing& forcing) override { share_->set_forcing(forcing); }
   HydraulicForcing forcing() const override { return share_->forcing(); }

@@ -1,5 +1,6 @@
 // The cascade's event criteria (server/scenario/cascade_events.h) on hand-made frames: each fires
-// when its criterion is met and not before, and once only.
+// when its criterion is met and not before, and once only; the parts that the processes of a split
+// run take (CascadeEventDetector::part) fire the same events, with the same words.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 
 #include "server/scenario/cascade_events.h"
 #include "server/scenario/case_loader.h"
+#include "tests/unit/process_frames.h"
 
 namespace cascade {
 namespace {
@@ -118,6 +120,44 @@ TEST(CascadeEvents, NoEventsBlockMeansNoDetection) {
   FrameBuilder f;
   f.add(0.1, 0.5, 1, 0, 0, 0, true);
   EXPECT_TRUE(detector.observe(f.frame, {0.5}, 0.0).empty());
+}
+
+TEST(CascadeEvents, PartsOfProcessesFireWhatTheWholeFrameFires) {
+  const std::string events =
+      "{ponding_started: true, landslide_onset: {plastic_strain: 0.05, speed: 0.1, volume: 2.5e-4}, "
+      "water_impact: {speed: 0.1}, overtopping: [{name: far_bank, axis: x, position: 1.8, above: 0.55}, "
+      "{name: near_bank, axis: x, position: 0.05, above: 0.9, below: true}]}";
+  const double h = 0.013;
+  FrameBuilder f;
+  f.add(1.9, 0.6, 0);                        // water past the far bank
+  f.add(1.85, 0.7, 0);                       // and more of it
+  f.add(1.0, 0.1, 0);                        // water the slide reaches
+  for (int k = 0; k < 4; ++k) f.add(1.0 - (0.5 + 0.1 * k) * h, 0.1, 1, 0.5 + k, 0, 0.1);  // failed soil, moving
+  f.add(0.1, 0.5, 1, 0, 0, 0, true);         // two surface particles at p_max
+  f.add(0.2, 0.5, 1, 0, 0, 0, true);
+  f.add(0.3, 0.5, 1, 0, -100, 0, true);      // and one under suction
+  CascadeEventDetector whole(spec_with_events(events), h, {"gauge1"});
+  const auto expected = whole.observe(f.frame, {0.5}, 0.0);
+  ASSERT_EQ(expected.size(), 4u);  // the near bank holds
+
+  for (int processes : {1, 2, 3, 4}) {
+    CascadeEventDetector detector(spec_with_events(events), h, {"gauge1"});
+    std::vector<int> owner(f.frame.size());
+    for (std::size_t i = 0; i < owner.size(); ++i) owner[i] = int((i + 1) % std::size_t(processes));
+    std::vector<CascadeEventDetector::Part> parts;
+    int process = 0;
+    for (const FieldFrame& local : frames_of_processes(f.frame, owner, processes)) {
+      const std::vector<char> owned = owned_rows(local, process++);
+      parts.push_back(CascadeEventDetector::unflatten(CascadeEventDetector::flatten(detector.part(local, 0.0, &owned))));
+    }
+    const auto fired = detector.observe(parts, {0.5}, 0.0);
+    ASSERT_EQ(fired.size(), expected.size()) << processes << " processes";
+    for (std::size_t k = 0; k < fired.size(); ++k) {
+      EXPECT_EQ(fired[k].kind, expected[k].kind);
+      EXPECT_EQ(fired[k].message, expected[k].message) << processes << " processes";
+    }
+    EXPECT_THROW(CascadeEventDetector::unflatten({1.0, 2.0}), std::invalid_argument);
+  }
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // ProbeSampler on hand-made frames with known values: point (Shepard), max and mean probes of the
-// soil fields and their components, and the errors for fields a frame lacks.
+// soil fields and their components, and the errors for fields a frame lacks; the parts that the
+// processes of a split run take (ProbeSampler::parts) combine to the whole frame's values.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "cascade/v1/scenario.pb.h"
 #include "server/core/field_frame.h"
 #include "server/io/probe_sampler.h"
+#include "tests/unit/process_frames.h"
 
 namespace cascade {
 namespace {
@@ -214,6 +216,91 @@ TEST(ProbeSampler, FieldsTheFrameLacksAreErrors) {
                              1.0);
   EXPECT_THROW(surface.sample(soil_column(false)), std::invalid_argument);
   EXPECT_EQ(surface.sample(soil_column(true)), (std::vector<double>{1.0}));
+}
+
+// A tank of water at rest, 0.4 m deep in 2D (dp = 0.05 m, ρ = 1000 kg/m³, m = ρ dp² per metre),
+// with the soil column's particles beside it.
+FieldFrame tank_and_soil() {
+  FieldFrame frame = soil_column();
+  const double dp = 0.05;
+  std::uint32_t id = std::uint32_t(frame.size());
+  for (int i = 0; i < 8; ++i)
+    for (int k = 0; k < 8; ++k) {
+      const double x = 0.6 + (i + 0.5) * dp, z = (k + 0.5) * dp;
+      frame.position.insert(frame.position.end(), {x, 0.0, z});
+      frame.phase.push_back(0);
+      frame.id.push_back(id++);
+      frame.free_surface.push_back(0);
+      for (auto& f : frame.fields) {
+        const double value = f.name == "pore_pressure" ? 9810.0 * (0.4 - z) : f.name == "numerical_density" ? 1000.0 : 0.0;
+        f.values.insert(f.values.end(), std::size_t(f.components), value);
+      }
+    }
+  return frame;
+}
+
+TEST(ProbeSampler, PartsOfProcessesCombineToTheWholeFramesValues) {
+  v1::Probe rightmost_water = make_probe("front", v1::FRONT, "", "water");
+  rightmost_water.set_axis("x");
+  rightmost_water.set_origin(0.6);
+  v1::Probe lowest_soil = make_probe("toe", v1::FRONT, "", "soil");
+  lowest_soil.set_axis("y");  // case axis y: z in 2D
+  lowest_soil.set_minimum(true);
+  const ProbeSampler sampler(
+      unit_square({
+          make_probe("p_centre", v1::POINT, "pore_pressure", "soil", {0.5, 0.5}),
+          make_probe("p_pair", v1::POINT, "pore_pressure", "soil", {0.2, 0.2}),
+          make_probe("p_water", v1::POINT, "pore_pressure", "water", {0.8, 0.2}),
+          make_probe("p_nothing", v1::POINT, "pore_pressure", "soil", {0.9, 0.9}),
+          make_probe("level", v1::ELEVATION, "", "water", {0.8}),
+          make_probe("dry", v1::ELEVATION, "", "water", {0.1}),
+          rightmost_water,
+          lowest_soil,
+          make_probe("szz_max", v1::MAX, "stress_zz", "soil"),
+          make_probe("qz_mean", v1::MEAN, "seepage_z", "soil"),
+      }),
+      kH, 1000.0 * 0.05 * 0.05);
+  const FieldFrame whole = tank_and_soil();
+  const std::vector<double> expected = sampler.sample(whole);
+  EXPECT_NEAR(expected[4], 0.4, 0.5 * 0.05);  // the tank's surface, within dp/2
+  EXPECT_TRUE(std::isnan(expected[5]));
+  EXPECT_DOUBLE_EQ(expected[6], 0.4 - 0.025);
+
+  for (int processes : {1, 2, 3}) {
+    std::vector<int> owner(whole.size());
+    for (std::size_t i = 0; i < owner.size(); ++i) owner[i] = int((7 * i) % std::size_t(processes));
+    std::vector<std::vector<ProbeSampler::Part>> parts;
+    int process = 0;
+    for (const FieldFrame& local : frames_of_processes(whole, owner, processes)) {
+      const std::vector<char> owned = owned_rows(local, process++);
+      parts.push_back(ProbeSampler::unflatten(ProbeSampler::flatten(sampler.parts(local, &owned))));
+    }
+    const std::vector<double> combined = sampler.combine(parts);
+    ASSERT_EQ(combined.size(), expected.size());
+    for (std::size_t k = 0; k < expected.size(); ++k) {
+      if (std::isnan(expected[k])) {
+        EXPECT_TRUE(std::isnan(combined[k])) << sampler.names()[k];
+      } else if (k == 4 || (k >= 6 && k <= 8)) {  // an elevation in id order, the extremes: the same bits
+        EXPECT_EQ(combined[k], expected[k]) << sampler.names()[k] << " at " << processes << " processes";
+      } else {  // sums in another order: round-off
+        EXPECT_NEAR(combined[k], expected[k], 1e-13 * std::fabs(expected[k])) << sampler.names()[k];
+      }
+    }
+  }
+}
+
+TEST(ProbeSampler, MalformedPartsAreRefused) {
+  const ProbeSampler sampler(unit_square({make_probe("p", v1::MEAN, "pore_pressure", "soil")}), kH, 1.0);
+  const std::vector<double> good = ProbeSampler::flatten(sampler.parts(soil_column()));
+  EXPECT_NO_THROW(ProbeSampler::unflatten(good));
+  for (std::size_t cut = 0; cut < good.size(); ++cut)
+    EXPECT_THROW(ProbeSampler::unflatten(std::vector<double>(good.begin(), good.begin() + std::ptrdiff_t(cut))),
+                 std::invalid_argument)
+        << cut;
+  std::vector<double> longer = good;
+  longer.push_back(0.0);
+  EXPECT_THROW(ProbeSampler::unflatten(longer), std::invalid_argument);
+  EXPECT_THROW(sampler.combine({{}}), std::invalid_argument);  // a process's parts of no probe
 }
 
 }  // namespace
