@@ -28,6 +28,7 @@
 #include "server/io/probe_sampler.h"
 #include "server/io/run_summary.h"
 #include "server/io/snapshot_writer.h"
+#include "server/io/split_fields_writer.h"
 #include "server/io/vtk_writer.h"
 #include "server/scenario/cascade_events.h"
 #include "server/scenario/case_error.h"
@@ -115,11 +116,13 @@ const char* precision_name(Precision p) { return p == Precision::single_precisio
 // `output.interval`, probes every `output.probe_interval`, both also at the start and at the end
 // of the run.
 //
-// In a run split over processes (`transport`), every process takes part in gathering the frames
-// to process 0 (Engine::frame_at_process_0), which alone writes the files. The probes and events
-// need no gathering: each process sends process 0 the parts of its own particles (a few numbers
-// per probe: ProbeSampler::parts, CascadeEventDetector::part), which combines them. Whether
-// process 0 could write is agreed on by all, so that a failed write stops every process.
+// In a run split over processes (`transport`), nothing is gathered for fields.h5 or the probes:
+// each process writes its block of rows (in id order) of every dataset that process 0 lays out in
+// fields.h5 (split_fields_writer.h), and sends process 0 the parts of the probes and events of its own
+// particles (a few numbers per probe: ProbeSampler::parts, CascadeEventDetector::part), which
+// combines them. VTK files and snapshots, drawn by process 0, gather the frame there
+// (Engine::frame_at_process_0). Whether every process could write is agreed on by all, so that a
+// failed write stops every process.
 class Outputs {
  public:
   Outputs(const v1::ScenarioSpec& spec, const std::filesystem::path& dir, double h, double mass,
@@ -129,10 +132,13 @@ class Outputs {
         frame_interval_(stage_frame_interval(spec, 0)),
         probe_interval_(stage_probe_interval(spec, 0)),
         events_(spec, h, sampler_.names()),
-        transport_(transport) {
+        transport_(transport),
+        fields_path_(dir / "fields.h5"),
+        write_fields_(!spec.output().has_hdf5() || spec.output().hdf5()),
+        gather_frames_(!transport_ || spec.output().vtk() || spec.output().snapshots_size() > 0) {
     if (transport_ && transport_->process() != 0) return;
     std::filesystem::create_directories(dir);
-    if (!spec.output().has_hdf5() || spec.output().hdf5()) hdf5_ = std::make_unique<Hdf5FieldWriter>(dir / "fields.h5");
+    if (write_fields_) hdf5_ = std::make_unique<Hdf5FieldWriter>(fields_path_);
     if (spec.output().vtk()) vtk_ = std::make_unique<VtkSeriesWriter>(dir / "vtk");
     probes_ = std::make_unique<ProbeCsvWriter>(dir / "probes.csv", sampler_.names());
     snapshots_ = std::make_unique<SnapshotWriter>(spec, dir / "snapshots");
@@ -157,18 +163,24 @@ class Outputs {
     const auto started = std::chrono::steady_clock::now();
     std::vector<CascadeEvent> fired;
     std::string failure;
-    FieldFrame frame;
-    if (frame_due) frame = engine.frame_at_process_0();
+    const bool gather = frame_due && gather_frames_;
+    FieldFrame frame;  // the whole run's, on process 0
+    if (gather) frame = engine.frame_at_process_0();
     if (probe_due) {
-      fired = sample_probes(engine, frame_due && !transport_ ? &frame : nullptr, failure);
+      fired = sample_probes(engine, gather && !transport_ ? &frame : nullptr, failure);
       next_probe_ = next_due_time(next_probe_, t, probe_interval_);
       last_probe_time_ = t;
     }
     if (frame_due) {
+      if (transport_ && write_fields_) {
+        const std::string written = write_split_frame(*transport_, hdf5_.get(), fields_path_, engine.frame_block(),
+                                                      engine.particle_count());
+        if (failure.empty()) failure = written;
+      }
       try {
-        if (hdf5_) hdf5_->write(frame);
+        if (hdf5_ && !transport_) hdf5_->write(frame);
         if (vtk_) vtk_->write(frame);
-        if (snapshots_) snapshots_->write(frame);
+        if (snapshots_ && gather) snapshots_->write(frame);
       } catch (const std::exception& e) {
         if (!transport_) throw;
         if (failure.empty()) failure = e.what();
@@ -178,7 +190,7 @@ class Outputs {
       ++frames_;
     }
     if (transport_ && transport_->maximum(failure.empty() ? 0.0 : 1.0) > 0)
-      throw std::runtime_error(failure.empty() ? "process 0 could not write the outputs" : failure);
+      throw std::runtime_error(failure.empty() ? "another process could not write its outputs" : failure);
     seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return fired;
   }
@@ -251,6 +263,9 @@ class Outputs {
   std::unique_ptr<SnapshotWriter> snapshots_;
   CascadeEventDetector events_;
   Transport* transport_;
+  std::filesystem::path fields_path_;
+  bool write_fields_;   // fields.h5
+  bool gather_frames_;  // one process, or VTK files or snapshots of a split run
   std::uint64_t frames_ = 0;
   double seconds_ = 0;
 };

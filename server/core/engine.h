@@ -100,6 +100,10 @@ class Engine {
   // field "process" names each one's owner (owned_rows, field_frame.h). Probes and events are
   // sampled on it and their parts combined (ProbeSampler::combine, CascadeEventDetector::observe).
   virtual FieldFrame local_frame() const { return frame(); }
+  // This process's block of the whole run's frame, for a frame that every process writes its own
+  // rows of (Hdf5FieldWriter::reserve): the particles of ids id_block_start(N, P, r) up to
+  // id_block_start(N, P, r + 1) on process r of P, in id order; the whole frame in one process.
+  virtual FieldFrame frame_block() const { return frame(); }
   virtual const char* device_name() const = 0;
   // The free-surface hydraulic conditions (Eq. 39); a change applies from the next step on.
   virtual void set_forcing(const HydraulicForcing& forcing) = 0;

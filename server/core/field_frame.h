@@ -45,6 +45,13 @@ inline std::vector<char> owned_rows(const FieldFrame& frame, int process) {
   return owned;
 }
 
+// The first id of process r's block when the `particles` ids of a run are dealt out in id order to
+// `processes` processes as evenly as can be (Engine::frame_block); r = processes gives particles.
+// (Ids are 32-bit: the product fits 64 bits.)
+inline std::size_t id_block_start(std::size_t particles, int processes, int r) {
+  return std::size_t(std::uint64_t(particles) * std::uint64_t(r) / std::uint64_t(processes));
+}
+
 // The component a name suffix selects in a field of `components` values: x, y, z of a vector,
 // xx, yy, zz, xy, yz, zx of a symmetric tensor (Voigt order, as the fields hold it); −1 for none.
 inline int field_component_index(int components, const std::string& suffix) {

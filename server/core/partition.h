@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "server/core/engine_state.h"
@@ -31,6 +32,17 @@ class Transport {
   // Sends send[r] to each process r (an empty message where there is nothing) and returns what
   // each process sent to this one, indexed by sender.
   virtual std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& send) = 0;
+
+  // Bytes that this process writes into a file at an offset.
+  struct FilePiece {
+    std::uint64_t offset = 0;
+    const void* bytes = nullptr;
+    std::size_t size = 0;
+  };
+  // Writes every process's pieces into the existing file `path`, all processes at once (pieces must
+  // not overlap; the file is neither created nor truncated). Throws std::runtime_error, naming the
+  // file, where this process could not; the caller agrees on the outcome with the others.
+  virtual void write_pieces(const std::string& path, const std::vector<FilePiece>& pieces) = 0;
 };
 
 // The slabs: process r owns the moving particles with cut[r] <= x[axis] < cut[r + 1] (the first

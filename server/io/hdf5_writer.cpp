@@ -21,14 +21,20 @@ static_assert(std::is_same_v<hid_t, std::int64_t>, "file_ stores an hid_t");
 constexpr char kFormat[] = "cascade-fields-1";
 
 // Writes rows x components values as a dataset of shape (rows) or (rows, components), chunked
-// and compressed when there are more than kCompressAbove rows.
-void write_dataset(hid_t group, const std::string& name, hid_t file_type, hid_t memory_type,
-                   std::size_t rows, int components, const void* data, const std::string& units) {
+// and compressed when there are more than kCompressAbove rows. With no values (`data` null) the
+// dataset is laid out contiguous and its space allocated at once, unfilled, for others to write
+// into (Hdf5FieldWriter::reserve): returns where its first row lies in the file (0 for no rows).
+std::uint64_t write_dataset(hid_t group, const std::string& name, hid_t file_type, hid_t memory_type,
+                            std::size_t rows, int components, const void* data, const std::string& units) {
   const int rank = components == 1 ? 1 : 2;
   const hsize_t dims[2] = {rows, static_cast<hsize_t>(components)};
   Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose, "create space of " + name);
   Handle properties(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "create properties of " + name);
-  if (rows > Hdf5FieldWriter::kCompressAbove) {
+  if (!data) {
+    check(H5Pset_layout(properties, H5D_CONTIGUOUS), "lay out " + name);
+    check(H5Pset_alloc_time(properties, H5D_ALLOC_TIME_EARLY), "allocate " + name);
+    check(H5Pset_fill_time(properties, H5D_FILL_TIME_NEVER), "leave " + name + " unfilled");
+  } else if (rows > Hdf5FieldWriter::kCompressAbove) {
     // About 1 MiB per chunk: large enough for gzip, small enough to read a slice cheaply.
     const std::size_t row_bytes = H5Tget_size(file_type) * static_cast<std::size_t>(components);
     const hsize_t chunk[2] = {
@@ -43,9 +49,13 @@ void write_dataset(hid_t group, const std::string& name, hid_t file_type, hid_t 
   Handle dataset(
       H5Dcreate2(group, name.c_str(), file_type, space, H5P_DEFAULT, properties, H5P_DEFAULT),
       H5Dclose, "create dataset " + name);
-  if (rows > 0)
+  if (data && rows > 0)
     check(H5Dwrite(dataset, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
   write_string_attribute(dataset, "units", units);
+  if (data || rows == 0) return 0;
+  const haddr_t offset = H5Dget_offset(dataset);
+  if (offset == HADDR_UNDEF) throw std::runtime_error("HDF5: no place in the file for " + name);
+  return offset;
 }
 
 // Datasets of FieldFrame's own members; a RealField may not take their names.
@@ -129,26 +139,69 @@ bool Hdf5FieldWriter::selected(const std::string& field_name) const {
 
 // One dataset 0 … N-1 per particle count, shared by every frame with that count: the explicit
 // vertex connectivity of the XDMF Polyvertex topology.
-std::string Hdf5FieldWriter::connectivity_dataset(std::size_t particles) {
+std::string Hdf5FieldWriter::connectivity_dataset(std::size_t particles, std::vector<ReservedDataset>* reserved) {
   const std::string name = "/topology/polyvertex_" + std::to_string(particles);
   if (std::find(connectivity_written_.begin(), connectivity_written_.end(), particles) !=
       connectivity_written_.end())
     return name;
-  if (connectivity_written_.empty()) {
+  if (H5Lexists(file_, "/topology", H5P_DEFAULT) <= 0) {
     Handle group(H5Gcreate2(file_, "/topology", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
                  "create /topology");
   }
-  std::vector<std::uint32_t> indices(particles);
+  std::vector<std::uint32_t> indices(reserved ? 0 : particles);
   std::iota(indices.begin(), indices.end(), 0u);
-  write_dataset(file_, name, H5T_STD_U32LE, H5T_NATIVE_UINT32, particles, 1, indices.data(), "1");
+  const std::uint64_t offset = write_dataset(file_, name, H5T_STD_U32LE, H5T_NATIVE_UINT32, particles, 1,
+                                             reserved ? nullptr : indices.data(), "1");
+  if (reserved && particles > 0) reserved->push_back({"topology", offset, sizeof(std::uint32_t)});
+  if (reserved) pending_topology_ = name;
   connectivity_written_.push_back(particles);
   return name;
 }
 
 void Hdf5FieldWriter::write(const FieldFrame& frame) {
-  if (file_ < 0) throw std::logic_error("write to closed " + path_.string());
   validate(frame);
-  if (frames_ == 0) {
+  add_frame(frame, frame.size(), nullptr);
+  commit_reserved();
+}
+
+std::vector<Hdf5FieldWriter::ReservedDataset> Hdf5FieldWriter::reserve(const FieldFrame& shape,
+                                                                       std::size_t particles) {
+  static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the processes write their rows in the file's byte order");
+  validate(shape);
+  std::vector<ReservedDataset> reserved;
+  add_frame(shape, particles, &reserved);
+  return reserved;
+}
+
+void Hdf5FieldWriter::commit_reserved() {
+  if (!pending_) throw std::logic_error("no frame of " + path_.string() + " to commit");
+  xdmf_.append(*pending_);
+  pending_.reset();
+  pending_topology_.reset();
+  ++frames_;
+}
+
+// The group goes (its space stays in the file, unused), and the connectivity dataset laid out
+// with it; the next frame takes the group's name.
+void Hdf5FieldWriter::abandon_reserved() {
+  if (!pending_) return;
+  const std::string group_name = frame_group_name(frames_);
+  pending_.reset();
+  check(H5Ldelete(file_, group_name.c_str(), H5P_DEFAULT), "delete " + group_name);
+  if (pending_topology_) {
+    check(H5Ldelete(file_, pending_topology_->c_str(), H5P_DEFAULT), "delete " + *pending_topology_);
+    connectivity_written_.pop_back();
+    pending_topology_.reset();
+  }
+  check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flush " + path_.string());
+}
+
+// The frame's group and datasets of n rows, with the frame's values or (`reserved`) laid out for
+// the processes to write; flushed. The sidecar's grid waits in pending_.
+void Hdf5FieldWriter::add_frame(const FieldFrame& frame, std::size_t n, std::vector<ReservedDataset>* reserved) {
+  if (file_ < 0) throw std::logic_error("write to closed " + path_.string());
+  if (pending_) throw std::logic_error("a frame of " + path_.string() + " is not committed");
+  if (dimensions_ == 0) {  // the first frame (a frame taken out again leaves the attribute)
     dimensions_ = frame.dimensions;
     write_scalar_attribute(file_, "dimensions", H5T_STD_I32LE, H5T_NATIVE_INT, &dimensions_);
   } else if (frame.dimensions != dimensions_) {
@@ -156,41 +209,43 @@ void Hdf5FieldWriter::write(const FieldFrame& frame) {
                                 ", earlier frames " + std::to_string(dimensions_));
   }
 
-  const std::size_t n = frame.size();
   const std::string group_name = frame_group_name(frames_);
   XdmfWriter::Grid grid;
   grid.time = frame.time;
   grid.nodes = n;
-  grid.connectivity_dataset = connectivity_dataset(n);
+  grid.connectivity_dataset = connectivity_dataset(n, reserved);
   grid.position_dataset = group_name + "/position";
   {
     Handle group(H5Gcreate2(file_, group_name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                  H5Gclose, "create " + group_name);
     write_scalar_attribute(group, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &frame.time);
     write_scalar_attribute(group, "step", H5T_STD_U64LE, H5T_NATIVE_UINT64, &frame.step);
-    write_dataset(group, "position", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, 3, frame.position.data(),
-                  "m");
-    write_dataset(group, "phase", H5T_STD_U8LE, H5T_NATIVE_UINT8, n, 1, frame.phase.data(), "1");
-    write_dataset(group, "id", H5T_STD_U32LE, H5T_NATIVE_UINT32, n, 1, frame.id.data(), "1");
+    const auto put = [&](const std::string& name, hid_t file_type, hid_t memory_type, int components,
+                         const void* data, const std::string& units) {
+      const std::uint64_t offset =
+          write_dataset(group, name, file_type, memory_type, n, components, reserved ? nullptr : data, units);
+      if (reserved && n > 0)
+        reserved->push_back({name, offset, H5Tget_size(file_type) * static_cast<std::size_t>(components)});
+    };
+    put("position", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 3, frame.position.data(), "m");
+    put("phase", H5T_STD_U8LE, H5T_NATIVE_UINT8, 1, frame.phase.data(), "1");
+    put("id", H5T_STD_U32LE, H5T_NATIVE_UINT32, 1, frame.id.data(), "1");
     grid.attributes.push_back({"phase", group_name + "/phase", 1, XdmfWriter::NumberType::uint8});
     grid.attributes.push_back({"id", group_name + "/id", 1, XdmfWriter::NumberType::uint32});
     if (!frame.free_surface.empty() && selected("free_surface")) {
-      write_dataset(group, "free_surface", H5T_STD_U8LE, H5T_NATIVE_UINT8, n, 1,
-                    frame.free_surface.data(), "1");
+      put("free_surface", H5T_STD_U8LE, H5T_NATIVE_UINT8, 1, frame.free_surface.data(), "1");
       grid.attributes.push_back(
           {"free_surface", group_name + "/free_surface", 1, XdmfWriter::NumberType::uint8});
     }
     for (const FieldFrame::RealField& f : frame.fields) {
       if (!selected(f.name)) continue;
-      write_dataset(group, f.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, f.components,
-                    f.values.data(), f.units);
+      put(f.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.components, f.values.data(), f.units);
       grid.attributes.push_back(
           {f.name, group_name + "/" + f.name, f.components, XdmfWriter::NumberType::float64});
     }
   }
   check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flush " + path_.string());
-  xdmf_.append(grid);
-  ++frames_;
+  pending_ = std::move(grid);
 }
 
 }  // namespace cascade

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,23 @@ class Hdf5FieldWriter {
   // Throws std::invalid_argument, naming the array, if the frame's sizes are inconsistent.
   void write(const FieldFrame& frame);
 
+  // A frame that the processes of a split run write themselves, each its rows (in id order):
+  // where the rows of one of its datasets lie in the file.
+  struct ReservedDataset {
+    std::string column;     // "position", "phase", "id", "free_surface", a field's name, or "topology"
+                            // (the Polyvertex connectivity 0 … N−1, written once per particle count)
+    std::uint64_t offset;   // of row 0 in the file
+    std::size_t row_bytes;  // little-endian: float64 × components, uint32 (id, topology), uint8
+  };
+  // Appends a frame of `particles` rows as write() does, with its datasets contiguous,
+  // uncompressed and allocated but not written (no fill either), and returns where their rows lie
+  // (none for no particles). `shape` gives the time, step, dimensions and fields; its rows are not
+  // written. The frame enters the sidecar at commit_reserved(), once the rows are in the file.
+  std::vector<ReservedDataset> reserve(const FieldFrame& shape, std::size_t particles);
+  void commit_reserved();
+  // Takes the reserved frame out of the file again (a process could not write its rows).
+  void abandon_reserved();
+
   // Closes the file; later writes throw std::logic_error. The destructor calls it.
   void close();
 
@@ -43,7 +61,8 @@ class Hdf5FieldWriter {
 
  private:
   bool selected(const std::string& field_name) const;
-  std::string connectivity_dataset(std::size_t particles);
+  std::string connectivity_dataset(std::size_t particles, std::vector<ReservedDataset>* reserved);
+  void add_frame(const FieldFrame& frame, std::size_t particles, std::vector<ReservedDataset>* reserved);
 
   std::filesystem::path path_;
   std::vector<std::string> fields_filter_;
@@ -52,6 +71,8 @@ class Hdf5FieldWriter {
   int dimensions_ = 0;                             // of the first frame; every frame must match it
   std::vector<std::size_t> connectivity_written_;  // particle counts with a /topology dataset
   XdmfWriter xdmf_;
+  std::optional<XdmfWriter::Grid> pending_;  // of the frame added and not yet committed
+  std::optional<std::string> pending_topology_;  // a connectivity dataset laid out with it
 };
 
 }  // namespace cascade

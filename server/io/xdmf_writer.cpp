@@ -1,6 +1,8 @@
 #include "server/io/xdmf_writer.h"
 
 #include <cstdio>
+#include <filesystem>
+#include <system_error>
 #include <utility>
 
 #include "server/io/text_output.h"
@@ -53,8 +55,13 @@ const char* attribute_type(int components) {
 
 }  // namespace
 
+// A sidecar left by an earlier run in the same place would name frames that the new HDF5 file does
+// not hold (it is truncated): it goes, and the first frame writes the new one.
 XdmfWriter::XdmfWriter(std::filesystem::path xdmf_path, std::string h5_file_name)
-    : path_(std::move(xdmf_path)), h5_file_name_(std::move(h5_file_name)) {}
+    : path_(std::move(xdmf_path)), h5_file_name_(std::move(h5_file_name)) {
+  std::error_code ignored;  // none there, or one that cannot go: the first frame replaces it
+  std::filesystem::remove(path_, ignored);
+}
 
 std::string XdmfWriter::data_item(const std::string& dimensions, NumberType type,
                                   const std::string& dataset) const {

@@ -31,6 +31,7 @@ class XdmfWriter {
   };
 
   // `h5_file_name` is the name written into every reference, relative to the XDMF file's folder.
+  // A file at `xdmf_path` is removed: the first append writes the new one.
   XdmfWriter(std::filesystem::path xdmf_path, std::string h5_file_name);
 
   // Adds one grid (time step) and rewrites the whole file atomically.

@@ -201,72 +201,92 @@ std::vector<std::size_t> DistributedEngine::share_sizes() const {
   return sizes;
 }
 
-FieldFrame DistributedEngine::frame() const { return gather_frame(true); }
+FieldFrame DistributedEngine::frame() const { return gather_frame(FrameTo::every_process); }
 
-FieldFrame DistributedEngine::frame_at_process_0() const { return gather_frame(false); }
+FieldFrame DistributedEngine::frame_at_process_0() const { return gather_frame(FrameTo::process_0); }
+
+FieldFrame DistributedEngine::frame_block() const { return gather_frame(FrameTo::id_blocks); }
 
 FieldFrame DistributedEngine::local_frame() const { return share_->frame(); }
 
 // Each process sends the particles it owns (its share's frame, field "process") to every other,
-// or to process 0 alone, and each that receives puts them together by id: the whole run's frame,
-// as one process would give it.
-FieldFrame DistributedEngine::gather_frame(bool everywhere) const {
+// to process 0 alone, or to the process whose block of ids holds each (FrameTo::id_blocks), and
+// each that receives puts them together by id: the whole run's frame, as one process would give
+// it, or its block of it.
+FieldFrame DistributedEngine::gather_frame(FrameTo to) const {
   const FieldFrame own = share_->frame();
   const auto* process = own.find("process");
   if (!process) throw std::logic_error("a share's frame has no process field");
-  const int me = transport_.process();
+  const int me = transport_.process(), processes = transport_.processes();
+  const std::size_t n = particles_;
+  const auto first = [&](int r) { return id_block_start(n, processes, r); };
+  const auto destination = [&](std::uint32_t id) {
+    if (to != FrameTo::id_blocks) return 0;
+    int r = int(std::uint64_t(id) * std::uint64_t(processes) / std::max<std::size_t>(n, 1));
+    while (r + 1 < processes && id >= first(r + 1)) ++r;  // the integer divisions' round-off
+    while (r > 0 && id < first(r)) --r;
+    return r;
+  };
+  const int messages = to == FrameTo::id_blocks ? processes : 1;
+  std::vector<std::uint64_t> count(static_cast<std::size_t>(messages), 0);
   std::vector<std::uint32_t> rows;
   for (std::uint32_t k = 0; k < own.size(); ++k)
-    if (process->values[k] == double(me)) rows.push_back(k);
+    if (process->values[k] == double(me)) rows.push_back(k), ++count[std::size_t(destination(own.id[k]))];
 
-  ByteWriter message;
-  message.put(std::uint64_t(rows.size()));
+  std::vector<ByteWriter> message(static_cast<std::size_t>(messages));
+  for (int m = 0; m < messages; ++m) message[std::size_t(m)].put(count[std::size_t(m)]);
   const bool surface = !own.free_surface.empty();
   for (std::uint32_t k : rows) {
-    message.put(own.id[k]);
-    message.put(&own.position[3 * std::size_t(k)], 3);
-    message.put(own.phase[k]);
-    if (surface) message.put(own.free_surface[k]);
+    ByteWriter& out = message[std::size_t(destination(own.id[k]))];
+    out.put(own.id[k]);
+    out.put(&own.position[3 * std::size_t(k)], 3);
+    out.put(own.phase[k]);
+    if (surface) out.put(own.free_surface[k]);
     for (const auto& field : own.fields)
-      message.put(&field.values[std::size_t(k) * field.components], std::size_t(field.components));
+      out.put(&field.values[std::size_t(k) * field.components], std::size_t(field.components));
   }
-  std::vector<std::vector<char>> send(transport_.processes());
-  for (int r = 0; r < transport_.processes(); ++r)
-    if (everywhere || r == 0) send[r] = message.bytes;
+  std::vector<std::vector<char>> send(static_cast<std::size_t>(processes));
+  for (int r = 0; r < processes; ++r) {
+    if (to == FrameTo::id_blocks) send[std::size_t(r)] = std::move(message[std::size_t(r)].bytes);
+    else if (to == FrameTo::every_process || r == 0) send[std::size_t(r)] = message[0].bytes;
+  }
   const auto received = transport_.exchange(send);
   FieldFrame whole;
   whole.time = own.time;
   whole.step = own.step;
   whole.dimensions = own.dimensions;
-  if (!everywhere && me != 0) return whole;
-  const std::size_t n = particles_;
-  whole.position.assign(3 * n, 0.0);
-  whole.phase.assign(n, 0);
-  whole.id.assign(n, 0);
-  if (surface) whole.free_surface.assign(n, 0);
+  if (to == FrameTo::process_0 && me != 0) return whole;
+  const std::size_t lo = to == FrameTo::id_blocks ? first(me) : 0;
+  const std::size_t rows_here = (to == FrameTo::id_blocks ? first(me + 1) : n) - lo;
+  whole.position.assign(3 * rows_here, 0.0);
+  whole.phase.assign(rows_here, 0);
+  whole.id.assign(rows_here, 0);
+  if (surface) whole.free_surface.assign(rows_here, 0);
   for (const auto& field : own.fields)
     whole.fields.push_back({field.name, field.units, field.components,
-                            std::vector<double>(n * std::size_t(field.components), 0.0)});
-  std::vector<char> seen(n, 0);
+                            std::vector<double>(rows_here * std::size_t(field.components), 0.0)});
+  std::vector<char> seen(rows_here, 0);
   std::size_t placed = 0;
   for (const auto& in : received) {
     ByteReader reader(in);
     const auto rows_in = reader.take<std::uint64_t>();
     for (std::uint64_t m = 0; m < rows_in; ++m) {
       const auto id = reader.take<std::uint32_t>();
-      if (id >= n || seen[id]) throw std::logic_error("particle " + std::to_string(id) + " is owned twice or unknown");
-      seen[id] = 1, ++placed;
-      whole.id[id] = id;
-      reader.take(&whole.position[3 * std::size_t(id)], 3);
-      reader.take(&whole.phase[id], 1);
-      if (surface) reader.take(&whole.free_surface[id], 1);
+      if (id < lo || id - lo >= rows_here || seen[id - lo])
+        throw std::logic_error("particle " + std::to_string(id) + " is owned twice or unknown");
+      const std::size_t row = id - lo;
+      seen[row] = 1, ++placed;
+      whole.id[row] = id;
+      reader.take(&whole.position[3 * row], 3);
+      reader.take(&whole.phase[row], 1);
+      if (surface) reader.take(&whole.free_surface[row], 1);
       for (auto& field : whole.fields)
-        reader.take(&field.values[std::size_t(id) * field.components], std::size_t(field.components));
+        reader.take(&field.values[row * field.components], std::size_t(field.components));
     }
   }
-  if (placed != n)
-    throw std::logic_error("the processes own " + std::to_string(placed) + " of the run's " + std::to_string(n) +
-                           " particles");
+  if (placed != rows_here)
+    throw std::logic_error("the processes own " + std::to_string(placed) + " of the " + std::to_string(rows_here) +
+                           " particles of " + (to == FrameTo::id_blocks ? "this process's block" : "the run"));
   return whole;
 }
 

@@ -41,6 +41,7 @@ class DistributedEngine final : public Engine {
   // The whole run's on process 0; on the others a frame with the time and step and no particles.
   FieldFrame frame_at_process_0() const override;
   FieldFrame local_frame() const override;  // the share's, with the field "process"
+  FieldFrame frame_block() const override;
   const char* device_name() const override { return share_->device_name(); }
   void set_forcing(const HydraulicForcing& forcing) override { share_->set_forcing(forcing); }
   HydraulicForcing forcing() const override { return share_->forcing(); }
@@ -69,7 +70,8 @@ class DistributedEngine final : public Engine {
  private:
   [[noreturn]] static void refuse(const char* what);
   std::unique_ptr<Engine> start_share(const HostParticles& whole, const EngineState* checkpoint);
-  FieldFrame gather_frame(bool everywhere) const;
+  enum class FrameTo { every_process, process_0, id_blocks };
+  FieldFrame gather_frame(FrameTo to) const;
   EngineState gather_state(bool everywhere) const;
 
   EngineConfig config_;

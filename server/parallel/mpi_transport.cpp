@@ -1,5 +1,6 @@
 #include "server/parallel/mpi_transport.h"
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -68,6 +69,26 @@ std::vector<std::vector<char>> MpiTransport::exchange(const std::vector<std::vec
   for (int r = 0; r < processes_; ++r)
     received[r].assign(in.begin() + receive_at[r], in.begin() + receive_at[r] + receive_count[r]);
   return received;
+}
+
+void MpiTransport::write_pieces(const std::string& path, const std::vector<FilePiece>& pieces) {
+  MPI_File file;
+  if (MPI_File_open(communicator_, path.c_str(), MPI_MODE_WRONLY, MPI_INFO_NULL, &file) != MPI_SUCCESS)
+    throw std::runtime_error("MPI-IO: cannot open " + path + " to write");
+  std::string failure;
+  for (const FilePiece& piece : pieces) {
+    const char* bytes = static_cast<const char*>(piece.bytes);
+    for (std::size_t done = 0; done < piece.size && failure.empty();) {
+      const int count = int(std::min<std::size_t>(piece.size - done, std::size_t(1) << 30));  // MPI's int counts
+      MPI_Status status;
+      if (MPI_File_write_at(file, MPI_Offset(piece.offset + done), bytes + done, count, MPI_BYTE, &status) != MPI_SUCCESS)
+        failure = "MPI-IO: cannot write " + std::to_string(count) + " bytes at " + std::to_string(piece.offset + done) +
+                  " in " + path;
+      done += std::size_t(count);
+    }
+  }
+  if (MPI_File_close(&file) != MPI_SUCCESS && failure.empty()) failure = "MPI-IO: cannot close " + path;
+  if (!failure.empty()) throw std::runtime_error(failure);
 }
 
 }  // namespace cascade

@@ -28,6 +28,9 @@ class MpiTransport final : public Transport {
   double maximum(double value) override { return reduce(value, MPI_MAX); }
   double sum(double value) override { return reduce(value, MPI_SUM); }
   std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& send) override;
+  // With MPI-IO (MPI_File_write_at), which handles a file system shared between nodes (NFS's
+  // locking included) as plain writes from each node would not.
+  void write_pieces(const std::string& path, const std::vector<FilePiece>& pieces) override;
 
  private:
   double reduce(double value, MPI_Op op);

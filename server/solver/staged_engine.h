@@ -75,6 +75,10 @@ class StagedEngine final : public Engine {
     sync();
     return dynamic_->local_frame();
   }
+  FieldFrame frame_block() const override {
+    sync();
+    return dynamic_->frame_block();
+  }
   const char* device_name() const override { return dynamic_->device_name(); }
   PoreWaterAccount pore_water_account() const override {
     return unsynced_ ? pore_water_state_.pore_water : dynamic_->pore_water_account();

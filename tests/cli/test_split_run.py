@@ -1,4 +1,5 @@
 """`mpirun -np N cascade run` (issue 17): a run split over processes writes what one process writes.
+Its fields.h5 is written by every process, each its rows (server/io/split_fields_writer.h).
 
 Real processes: `cascade run` alone and under mpirun at 2 and 3 processes (one thread each, more
 processes than cores with --oversubscribe), their fields.h5, probes.csv, run.json and balance.csv
@@ -70,6 +71,38 @@ class SplitRun(unittest.TestCase):
 
         return compared
 
+    def assert_same_frames(self, alone, split):
+        """Every process wrote its rows of fields.h5 (server/io/split_fields_writer.h): contiguous
+        datasets, the frames' steps and units as one process's and their times to round-off, and
+        the same sidecar but for the field `process`, which only a split run has."""
+        h5py = clitest.import_h5py()
+        with h5py.File(alone / "fields.h5", "r") as a, h5py.File(split / "fields.h5", "r") as b:
+            self.assertEqual(a.attrs["dimensions"], b.attrs["dimensions"])
+            self.assertEqual(list(a["frames"]), list(b["frames"]))
+            for name in a["frames"]:
+                one, many = a["frames"][name], b["frames"][name]
+                # the step's dt is reduced over the processes from sums taken in another order
+                self.assertAlmostEqual(one.attrs["time"], many.attrs["time"], delta=1e-12 * one.attrs["time"], msg=name)
+                self.assertEqual(one.attrs["step"], many.attrs["step"], name)
+                for dataset in one:
+                    self.assertEqual(one[dataset].attrs["units"], many[dataset].attrs["units"], f"{name}/{dataset}")
+                    self.assertIsNone(many[dataset].chunks, f"{name}/{dataset} is not laid out for the processes")
+        lines = [line for line in (split / "fields.xdmf").read_text().splitlines()]
+        kept = []
+        for k, line in enumerate(lines):  # drop the Attribute "process" (three lines)
+            if '<Attribute Name="process"' in line or (k > 0 and '<Attribute Name="process"' in lines[k - 1]) or \
+                    (k > 1 and '<Attribute Name="process"' in lines[k - 2]):
+                continue
+            kept.append(line)
+        expected = (alone / "fields.xdmf").read_text().splitlines()
+        self.assertEqual(len(kept), len(expected))
+        for line, alone_line in zip(kept, expected):
+            if "<Time Value=" in alone_line:
+                time = float(line.split('"')[1])
+                self.assertAlmostEqual(time, float(alone_line.split('"')[1]), delta=1e-12 * time)
+            else:
+                self.assertEqual(line, alone_line)
+
     def compare_with_one_process(self, processes):
         import numpy as np
         h5py = clitest.import_h5py()
@@ -110,6 +143,7 @@ class SplitRun(unittest.TestCase):
         self.assertEqual(steps, sorted(steps))
 
         compared = self.assert_same_fields(self.alone, split, DP, processes)
+        self.assert_same_frames(self.alone, split)
 
         header, rows = clitest.read_probes(split / "probes.csv")
         alone_header, alone_rows = clitest.read_probes(self.alone / "probes.csv")
