@@ -9,8 +9,8 @@ own, the copies in its halo, the dummies there: run.json's process_particles), t
 against one process with one thread and, for a split run, the slowest process's wall time in the
 steps' exchanges and the bytes all processes sent per step (run.json's exchange), and the
 frames written with the wall time of the outputs per frame and in all (run.json's outputs: split
-over processes, the frames are gathered to process 0, which writes them; the probes are sampled
-from the parts of each process's particles, a few numbers: ProbeSampler::parts), with the
+over processes, every process writes its rows of fields.h5, server/io/split_fields_writer.h, and
+the probes are sampled from the parts of each process's particles: ProbeSampler::parts), with the
 machine (CPU model, cores, memory, STREAM's triad) and the load average before and after. With
 --baseline COMMIT, the strong-scaling runs are made with that commit's `cascade` too (built in a
 worktree of its own, bench/compare_baseline.py), side by side. The figures of one run of this
