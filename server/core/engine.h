@@ -91,9 +91,9 @@ class Engine {
   virtual std::size_t lost_particles() const = 0;  // left the domain along a non-periodic axis
   virtual std::size_t device_bytes() const = 0;    // memory held in particle and grid arrays
   virtual FieldFrame frame() const = 0;            // all fields on the host, ordered by id
-  // The frame the outputs write: split over processes (DistributedEngine), gathered to process 0
-  // alone (the others get one with the time and step and no particles; process 0 writes the
-  // outputs), so that a frame costs each particle one message, not one to every process.
+  // The whole frame where one process draws it (VTK files, snapshots): split over processes
+  // (DistributedEngine), gathered to process 0 alone (the others get one with the time and step
+  // and no particles), so that a frame costs each particle one message, not one to every process.
   virtual FieldFrame frame_at_process_0() const { return frame(); }
   // This process's particles, with no message sent: the whole run's frame in one process; split
   // over processes, the particles it holds (those it owns and its copies of its neighbours'), whose
