@@ -132,7 +132,9 @@ std::vector<ProbeSampler::Part> ProbeSampler::unflatten(const std::vector<double
     return numbers.data() + at - count;
   };
   const double parts = *take(1);
-  if (!(parts >= 0 && parts == std::floor(parts))) throw std::invalid_argument("probe parts: bad count");
+  // Each part takes at least four numbers.
+  if (!(parts >= 0 && parts == std::floor(parts) && parts <= double(numbers.size()) / 4))
+    throw std::invalid_argument("probe parts: bad count");
   std::vector<Part> out(static_cast<std::size_t>(parts));
   for (Part& part : out) {
     const double* head = take(4);

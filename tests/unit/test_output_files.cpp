@@ -27,6 +27,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <random>
@@ -422,6 +423,24 @@ TEST(Hdf5FieldWriter, FieldsFilterAppliesToFreeSurface) {
   ASSERT_TRUE(without.valid());
   expect_frame_in_file(with, 0, frame, {"pore_pressure", "free_surface"});
   expect_frame_in_file(without, 0, frame, {"pore_pressure", "effective_stress"});
+}
+
+TEST(Hdf5FieldWriter, ANewWriterRemovesAnEarlierRunsSidecar) {
+  // The sidecar of a run of three frames in the same place named frames that the new, truncated
+  // fields.h5 does not hold until its own first frame replaced it.
+  const fs::path dir = fresh_directory();
+  {
+    Hdf5FieldWriter earlier(dir / "fields.h5");
+    for (int k = 0; k < 3; ++k) earlier.write(make_frame(12, 3, 0.1 * k, std::uint64_t(k), false, 20 + k));
+  }
+  ASSERT_TRUE(fs::exists(dir / "fields.xdmf"));
+  Hdf5FieldWriter writer(dir / "fields.h5");
+  EXPECT_FALSE(fs::exists(dir / "fields.xdmf"));
+  writer.write(make_frame(12, 3, 0.0, 0, false, 30));
+  std::ifstream in(dir / "fields.xdmf");
+  const std::string sidecar((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(sidecar.find("frame_000000"), std::string::npos);
+  EXPECT_EQ(sidecar.find("frame_000001"), std::string::npos);
 }
 
 TEST(Hdf5FieldWriter, FlushedFramesReadableBeforeClose) {
