@@ -9,7 +9,6 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -27,6 +26,7 @@
 #include "server/io/probe_csv_writer.h"
 #include "server/io/probe_sampler.h"
 #include "server/io/run_summary.h"
+#include "server/io/sample_parts.h"
 #include "server/io/snapshot_writer.h"
 #include "server/io/split_fields_writer.h"
 #include "server/io/vtk_writer.h"
@@ -119,8 +119,7 @@ const char* precision_name(Precision p) { return p == Precision::single_precisio
 // In a run split over processes (`transport`), nothing is gathered for fields.h5 or the probes:
 // each process writes its block of rows (in id order) of every dataset that process 0 lays out in
 // fields.h5 (split_fields_writer.h), and sends process 0 the parts of the probes and events of its own
-// particles (a few numbers per probe: ProbeSampler::parts, CascadeEventDetector::part), which
-// combines them. VTK files and snapshots, drawn by process 0, gather the frame there
+// particles (a few numbers per probe: sample_parts.h), which combines them. VTK files and snapshots, drawn by process 0, gather the frame there
 // (Engine::frame_at_process_0). Whether every process could write is agreed on by all, so that a
 // failed write stops every process.
 class Outputs {
@@ -128,6 +127,7 @@ class Outputs {
   Outputs(const v1::ScenarioSpec& spec, const std::filesystem::path& dir, double h, double mass,
           Transport* transport = nullptr)
       : spec_(spec),
+        mass_(mass),
         sampler_(spec, h, mass),
         frame_interval_(stage_frame_interval(spec, 0)),
         probe_interval_(stage_probe_interval(spec, 0)),
@@ -199,53 +199,20 @@ class Outputs {
   double seconds() const { return seconds_; }  // in observe: taking the frames, sampling, writing
 
  private:
-  // The probes' row and the events that fire, from every process's part of them. A process that
-  // cannot take its part sends an empty message (a part never is) and sets `failure`. `whole`: the
-  // whole run's frame, where one process has taken it already.
+  // The probes' row and the events that fire, from every process's part of them
+  // (sample_parts.h). `whole`: the whole run's frame, where one process has taken it already.
   std::vector<CascadeEvent> sample_probes(const Engine& engine, const FieldFrame* whole, std::string& failure) {
-    const int me = transport_ ? transport_->process() : 0;
-    std::vector<double> numbers;
+    const double ponding = engine.forcing().ponding_pressure;
+    const Engine::SamplePart part = [&](const FieldFrame& local, const std::vector<char>& owned) {
+      return sample_part(sampler_, events_, mass_, ponding, true, local, owned);
+    };
+    const std::vector<std::vector<char>> parts =
+        whole ? std::vector<std::vector<char>>{part(*whole, owned_rows(*whole, 0))} : engine.parts_at_process_0(part);
+    if (transport_ && transport_->process() != 0) return {};
     try {
-      const FieldFrame local = whole ? FieldFrame() : engine.local_frame();
-      const FieldFrame& mine = whole ? *whole : local;
-      const std::vector<char> owned = owned_rows(mine, me);
-      numbers = ProbeSampler::flatten(sampler_.parts(mine, &owned));
-      numbers.insert(numbers.begin(), double(numbers.size()));
-      const std::vector<double> event_numbers =
-          CascadeEventDetector::flatten(events_.part(mine, engine.forcing().ponding_pressure, &owned));
-      numbers.insert(numbers.end(), event_numbers.begin(), event_numbers.end());
-    } catch (const std::exception& e) {
-      if (!transport_) throw;
-      failure = e.what();
-      numbers.clear();
-    }
-    std::vector<std::vector<char>> received;
-    if (transport_) {
-      std::vector<std::vector<char>> send(transport_->processes());
-      send[0].resize(numbers.size() * sizeof(double));
-      std::memcpy(send[0].data(), numbers.data(), send[0].size());
-      received = transport_->exchange(send);
-    }
-    if (me != 0) return {};
-    try {
-      std::vector<std::vector<ProbeSampler::Part>> probe_parts;
-      std::vector<CascadeEventDetector::Part> event_parts;
-      const auto take = [&](const std::vector<double>& part, int process) {
-        if (part.empty() || !(part[0] >= 0 && part[0] + 1 <= double(part.size())))
-          throw std::runtime_error("process " + std::to_string(process) + " could not sample the probes");
-        const auto middle = part.begin() + 1 + std::ptrdiff_t(part[0]);
-        probe_parts.push_back(ProbeSampler::unflatten(std::vector<double>(part.begin() + 1, middle)));
-        event_parts.push_back(CascadeEventDetector::unflatten(std::vector<double>(middle, part.end())));
-      };
-      if (!transport_) take(numbers, 0);
-      for (std::size_t r = 0; r < received.size(); ++r) {
-        std::vector<double> part(received[r].size() / sizeof(double));
-        std::memcpy(part.data(), received[r].data(), part.size() * sizeof(double));
-        take(part, int(r));
-      }
-      const std::vector<double> values = sampler_.combine(probe_parts);
-      if (probes_) probes_->write_row(engine.time(), values);
-      return events_.observe(event_parts, values, engine.forcing().ponding_pressure);
+      const OutputSample sample = combine_sample_parts(sampler_, true, parts);
+      if (probes_) probes_->write_row(engine.time(), sample.probe_values);
+      return events_.observe(sample.event_parts, sample.probe_values, ponding);
     } catch (const std::exception& e) {
       if (!transport_) throw;
       if (failure.empty()) failure = e.what();
@@ -254,6 +221,7 @@ class Outputs {
   }
 
   const v1::ScenarioSpec& spec_;
+  double mass_;  // of a particle, for the probes' volumes and the energy
   ProbeSampler sampler_;
   double frame_interval_, probe_interval_;
   double next_frame_ = 0, next_probe_ = 0, last_frame_time_ = -1, last_probe_time_ = -1;

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -100,6 +101,14 @@ class Engine {
   // field "process" names each one's owner (owned_rows, field_frame.h). Probes and events are
   // sampled on it and their parts combined (ProbeSampler::combine, CascadeEventDetector::observe).
   virtual FieldFrame local_frame() const { return frame(); }
+  // Each process's part of a sample of the outputs (probes, events, energy: server/io/sample_parts.h),
+  // taken by `part` on its local frame and the rows it owns, brought to process 0, which gets one
+  // per process (the others none): no frame is gathered. A process whose part throws sends none.
+  using SamplePart = std::function<std::vector<char>(const FieldFrame& local, const std::vector<char>& owned)>;
+  virtual std::vector<std::vector<char>> parts_at_process_0(const SamplePart& part) const {
+    const FieldFrame whole = frame();
+    return {part(whole, owned_rows(whole, 0))};
+  }
   // This process's block of the whole run's frame, for a frame that every process writes its own
   // rows of (Hdf5FieldWriter::reserve): the particles of ids id_block_start(N, P, r) up to
   // id_block_start(N, P, r + 1) on process r of P, in id order; the whole frame in one process.

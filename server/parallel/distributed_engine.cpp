@@ -209,6 +209,19 @@ FieldFrame DistributedEngine::frame_block() const { return gather_frame(FrameTo:
 
 FieldFrame DistributedEngine::local_frame() const { return share_->frame(); }
 
+std::vector<std::vector<char>> DistributedEngine::parts_at_process_0(const SamplePart& part) const {
+  std::vector<std::vector<char>> send(static_cast<std::size_t>(transport_.processes()));
+  try {
+    const FieldFrame local = share_->frame();
+    send[0] = part(local, owned_rows(local, transport_.process()));
+  } catch (const std::exception&) {
+    send[0].clear();  // process 0 names this process (combine_sample_parts)
+  }
+  auto received = transport_.exchange(send);
+  if (transport_.process() != 0) return {};
+  return received;
+}
+
 // Each process sends the particles it owns (its share's frame, field "process") to every other,
 // to process 0 alone, or to the process whose block of ids holds each (FrameTo::id_blocks), and
 // each that receives puts them together by id: the whole run's frame, as one process would give

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <functional>
@@ -14,9 +15,12 @@
 #include <thread>
 #include <vector>
 
+#include "server/io/probe_sampler.h"
+#include "server/io/sample_parts.h"
 #include "server/parallel/distributed_engine.h"
 #include "server/parallel/mpi_transport.h"
 #include "server/parallel/state_message.h"
+#include "server/scenario/cascade_events.h"
 #include "server/scenario/engine_setup.h"
 #include "server/scenario/particle_builder.h"
 
@@ -41,6 +45,7 @@ enum class Call : std::uint32_t {
   restart_clock,
   equilibrium,
   refresh_seepage,
+  sample_parts,
   end,
 };
 
@@ -146,6 +151,13 @@ class LeaderEngine final : public Engine {
   Equilibrium equilibrium() const override { return call(Call::equilibrium), engine_->equilibrium(); }
   void refresh_seepage() override { call(Call::refresh_seepage), engine_->refresh_seepage(); }
   void zero_velocities() override { call(Call::zero_velocities), engine_->zero_velocities(); }
+  // The others take their parts with a sampler and detector of their own of the same case
+  // (follow_engine), always with the probes and events: a sample of the energy alone
+  // (combine_sample_parts with_probes false) reads only the energy of each part.
+  std::vector<std::vector<char>> parts_at_process_0(const SamplePart& part) const override {
+    call(Call::sample_parts);
+    return engine_->parts_at_process_0(part);
+  }
   LoadBalance load_balance() const override { return engine_->load_balance(); }
 
  private:
@@ -169,13 +181,23 @@ void follow_engine(const std::string& case_bytes, Precision precision, Device de
   spec.ParseFromString(case_bytes);
   std::unique_ptr<DistributedEngine> engine;
   MpiTransport transport(communicator);
+  std::unique_ptr<ProbeSampler> probes;
+  std::unique_ptr<CascadeEventDetector> events;
+  double mass = 0;
   try {
     const HostParticles particles = build_particle_set(spec).particles;
-    engine = std::make_unique<DistributedEngine>(engine_config(spec, particles, precision, device), particles, transport);
+    const EngineConfig config = engine_config(spec, particles, precision, device);
+    engine = std::make_unique<DistributedEngine>(config, particles, transport);
+    mass = config.water_density * std::pow(config.dp, config.dimensions);  // as the session's (session.cpp)
+    probes = std::make_unique<ProbeSampler>(spec, config.h, mass);
+    events = std::make_unique<CascadeEventDetector>(spec, config.h, probes->names());
   } catch (const std::exception&) {  // process 0 met the same and reports it
     MPI_Comm_free(&communicator);
     return;
   }
+  const Engine::SamplePart part = [&](const FieldFrame& local, const std::vector<char>& owned) {
+    return sample_part(*probes, *events, mass, engine->forcing().ponding_pressure, true, local, owned);
+  };
   for (;;) {
     std::uint32_t kind = 0;
     std::vector<char> bytes;
@@ -209,6 +231,7 @@ void follow_engine(const std::string& case_bytes, Precision precision, Device de
         case Call::restart_clock: engine->restart_clock(); break;
         case Call::equilibrium: engine->equilibrium(); break;
         case Call::refresh_seepage: engine->refresh_seepage(); break;
+        case Call::sample_parts: engine->parts_at_process_0(part); break;
         case Call::end: break;
       }
     } catch (const std::exception&) {

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "server/core/free_cores.h"
+#include "server/io/sample_parts.h"
 #include "server/scenario/engine_setup.h"
 #include "server/scenario/forcing_message.h"
 #include "server/scenario/output_schedule.h"
@@ -658,27 +659,26 @@ void Session::sample_outputs(bool force) {
   const bool probe_due = t >= next_probe_time_ - 1e-12 * probe_interval;
   const bool energy_due = wall_now() - last_energy_wall_ >= kEnergySampleSeconds;
   if (!force && !probe_due && !energy_due) return;
-  const FieldFrame frame = engine_->frame();
+  // Every process's part of the sample, brought to this one (sample_parts.h): a split engine
+  // gathers no frame for it.
   const double mass = config_.engine.water_density * std::pow(config_.engine.dp, config_.engine.dimensions);
-  const auto* velocity = frame.find("velocity");
-  double energy = 0, max_soil_speed = 0;
-  for (std::size_t i = 0; velocity && i < frame.size(); ++i) {
-    if (frame.phase[i] == std::uint8_t(Phase::boundary)) continue;
-    const double* v = &velocity->values[i * 3];
-    const double v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    energy += 0.5 * mass * v2;
-    if (frame.phase[i] == std::uint8_t(Phase::soil)) max_soil_speed = std::max(max_soil_speed, std::sqrt(v2));
-  }
-  kinetic_energy_ = energy, max_soil_speed_ = max_soil_speed;
+  const double ponding = engine_->forcing().ponding_pressure;
+  const bool take_probes =
+      (probe_due || force) && (probe_samples_.empty() || probe_samples_.back().step() != engine_->step_count());
+  const OutputSample taken = combine_sample_parts(
+      *probes_, take_probes, engine_->parts_at_process_0([&](const FieldFrame& local, const std::vector<char>& owned) {
+        return sample_part(*probes_, *cascade_events_, mass, ponding, take_probes, local, owned);
+      }));
+  kinetic_energy_ = taken.kinetic_energy, max_soil_speed_ = taken.max_soil_speed;
   refresh_pore_water();
   last_energy_wall_ = wall_now();
   // The probes are sampled outside the lock (only this thread writes probe_samples_, so it may
   // read it without one): a case of 10,000 probes held every reader of the session for the
   // sampling (Get of another simulation went from 1 ms to 75 ms).
   std::vector<CascadeEvent> fired;
-  if ((probe_due || force) && (probe_samples_.empty() || probe_samples_.back().step() != engine_->step_count())) {
-    const std::vector<double> values = probes_->sample(frame);
-    fired = cascade_events_->observe(frame, values, engine_->forcing().ponding_pressure);
+  if (take_probes) {
+    const std::vector<double>& values = taken.probe_values;
+    fired = cascade_events_->observe(taken.event_parts, values, ponding);
     if (!probe_names_.empty()) {
       v1::ProbeSample sample;
       sample.set_time(t);

@@ -5,8 +5,8 @@ cores with --oversubscribe) and alone, driven by the `cascade` client over loopb
 query files, checkpoints and journals read back. Registered only in builds with CASCADE_MPI
 (tests/CMakeLists.txt).
 
-- The 2D dam break (dp = a/20) run to t = 0.03 s and 100 steps on: the fields of the split server
-  as the one-process server's, to round-off (positions within 1e-9 dp, every other field within
+- The 2D dam break (dp = a/20) run to t = 0.03 s and 100 steps on: the fields and probe samples of
+  the split server as the one-process server's, to round-off (positions within 1e-9 dp, every other field within
   1e-7 of its range: sums in another order, tests/parallel/test_split_run.cpp).
 - A checkpoint written by the split server at 3 processes restores on a server at 2 processes and
   on one process (a new server on the same data dir) and goes on as the run that never stopped.
@@ -55,12 +55,27 @@ class SplitServer(unittest.TestCase):
             compared += 1
         self.assertGreaterEqual(compared, 5)
 
+    def assert_same_probes(self, split, alone):
+        """The probes' samples, taken from each process's parts (server/io/sample_parts.h): the same
+        steps, values to round-off (sums in another order), as in tests/cli/test_split_run.py."""
+        import math
+        self.assertEqual(split["probe_names"], alone["probe_names"])
+        self.assertGreater(len(alone["samples"]), 2)
+        self.assertEqual([s.get("step") for s in split["samples"]], [s.get("step") for s in alone["samples"]])
+        for one, many in zip(alone["samples"], split["samples"]):
+            for a, b in zip(one["values"], many["values"]):
+                if isinstance(a, str) or math.isnan(a):  # a probe with no particle to read
+                    self.assertTrue(isinstance(b, str) or math.isnan(b), (a, b))
+                else:
+                    self.assertAlmostEqual(b, a, delta=1e-9 * max(1.0, abs(a)))
+
     def test_fields_and_checkpoints_as_one_process(self):
         case = ["create", clitest.case("dam_break_2d"), "--set", f"dp={DP}", "--id", "db", "--json"]
         with clitest.Server("split_server_db", processes=3) as split:
             self.assertTrue(any("split over 3 processes" in line for line in split.notes), split.notes)
             self.assertEqual(json_of(split.cli(*case))["particle_count"], "1494")
             self.assertEqual(split.cli("run-until", "db", "0.03").returncode, 0)
+            split_probes = json_of(split.cli("probes", "db", "--json"))
             split_at, step = query(split, "db", "split_at_checkpoint")
             checkpoint = json_of(split.cli("checkpoint", "db", "--json"))
             self.assertEqual(int(checkpoint["step"]), step)
@@ -73,10 +88,12 @@ class SplitServer(unittest.TestCase):
         with clitest.Server("split_server_alone") as alone:
             json_of(alone.cli(*case))
             self.assertEqual(alone.cli("run-until", "db", "0.03").returncode, 0)
+            alone_probes = json_of(alone.cli("probes", "db", "--json"))
             alone_at, alone_step = query(alone, "db", "alone_at_checkpoint")
             self.assertEqual(alone_step, step)
             self.assertEqual(alone.cli("step", "db", str(STEPS_ON)).returncode, 0)
             alone_on, _ = query(alone, "db", "alone_on")
+        self.assert_same_probes(split_probes, alone_probes)
         self.assert_round_off(split_at, alone_at, DP, "3 processes at the checkpoint")
         self.assert_round_off(split_on, alone_on, DP, f"3 processes {STEPS_ON} steps on")
 
