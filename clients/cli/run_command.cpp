@@ -206,10 +206,11 @@ class Outputs {
     const Engine::SamplePart part = [&](const FieldFrame& local, const std::vector<char>& owned) {
       return sample_part(sampler_, events_, mass_, ponding, true, local, owned);
     };
-    const std::vector<std::vector<char>> parts =
-        whole ? std::vector<std::vector<char>>{part(*whole, owned_rows(*whole, 0))} : engine.parts_at_process_0(part);
-    if (transport_ && transport_->process() != 0) return {};
     try {
+      const std::vector<std::vector<char>> parts =
+          whole ? std::vector<std::vector<char>>{part(*whole, owned_rows(*whole, 0))}
+                : engine.parts_at_process_0(part, sample_request(true));
+      if (transport_ && transport_->process() != 0) return {};
       const OutputSample sample = combine_sample_parts(sampler_, true, parts);
       if (probes_) probes_->write_row(engine.time(), sample.probe_values);
       return events_.observe(sample.event_parts, sample.probe_values, ponding);

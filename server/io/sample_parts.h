@@ -25,6 +25,14 @@ struct OutputSample {
   std::vector<CascadeEventDetector::Part> event_parts;  // with_probes only, one per process
 };
 
+// The request of a sample (Engine::parts_at_process_0): whether its parts hold the probes and
+// events, or the energy alone. A split server's other processes take their parts by it.
+inline std::vector<char> sample_request(bool with_probes) { return {char(with_probes ? 1 : 0)}; }
+inline bool sample_request_with_probes(const std::vector<char>& request) {
+  if (request.size() != 1) throw std::invalid_argument("a sample's request of " + std::to_string(request.size()) + " bytes, not 1");
+  return request[0] != 0;
+}
+
 // The part of the rows `owned` marks of a process's local frame: [kinetic energy, fastest soil,
 // the count of probe numbers, the probes' numbers, the events' numbers]; with_probes false leaves
 // the probes and events out (a sample of the energy alone).
@@ -53,8 +61,8 @@ inline std::vector<char> sample_part(const ProbeSampler& probes, const CascadeEv
   return bytes;
 }
 
-// The sample from every process's part (an empty part: that process could not take it, and this
-// throws std::runtime_error naming it).
+// The sample from every process's part (a part too short to be one throws std::runtime_error
+// naming its process).
 inline OutputSample combine_sample_parts(const ProbeSampler& probes, bool with_probes,
                                          const std::vector<std::vector<char>>& parts) {
   OutputSample sample;
@@ -63,7 +71,7 @@ inline OutputSample combine_sample_parts(const ProbeSampler& probes, bool with_p
     std::vector<double> numbers(parts[r].size() / sizeof(double));
     std::memcpy(numbers.data(), parts[r].data(), numbers.size() * sizeof(double));
     if (numbers.size() < 3 || !(numbers[2] >= 0 && numbers[2] + 3 <= double(numbers.size())))
-      throw std::runtime_error("process " + std::to_string(r) + " could not take its part of the outputs' sample");
+      throw std::runtime_error("process " + std::to_string(r) + " sent a malformed part of the outputs' sample");
     sample.kinetic_energy += numbers[0];
     sample.max_soil_speed = std::max(sample.max_soil_speed, numbers[1]);
     if (!with_probes) continue;

@@ -209,16 +209,31 @@ FieldFrame DistributedEngine::frame_block() const { return gather_frame(FrameTo:
 
 FieldFrame DistributedEngine::local_frame() const { return share_->frame(); }
 
-std::vector<std::vector<char>> DistributedEngine::parts_at_process_0(const SamplePart& part) const {
+// Each part goes with a first byte that says whether it was taken; a process whose part threw
+// sends the reason instead, and process 0 throws it, naming the process: the others do not wait
+// for a failure that only one of them met, and the reason is not lost.
+std::vector<std::vector<char>> DistributedEngine::parts_at_process_0(const SamplePart& part,
+                                                                    const std::vector<char>& /*request*/) const {
   std::vector<std::vector<char>> send(static_cast<std::size_t>(transport_.processes()));
+  char taken = 1;
   try {
     const FieldFrame local = share_->frame();
     send[0] = part(local, owned_rows(local, transport_.process()));
-  } catch (const std::exception&) {
-    send[0].clear();  // process 0 names this process (combine_sample_parts)
+  } catch (const std::exception& e) {
+    const std::string reason = e.what();
+    taken = 0, send[0].assign(reason.begin(), reason.end());
   }
+  send[0].insert(send[0].begin(), taken);
   auto received = transport_.exchange(send);
   if (transport_.process() != 0) return {};
+  for (std::size_t r = 0; r < received.size(); ++r) {
+    std::vector<char>& in = received[r];
+    if (in.empty()) throw std::logic_error("process " + std::to_string(r) + " sent no part of the sample");
+    if (!in.front())
+      throw std::runtime_error("process " + std::to_string(r) + " could not take its part of the sample: " +
+                               std::string(in.begin() + 1, in.end()));
+    in.erase(in.begin());
+  }
   return received;
 }
 
@@ -228,8 +243,7 @@ std::vector<std::vector<char>> DistributedEngine::parts_at_process_0(const Sampl
 // it, or its block of it.
 FieldFrame DistributedEngine::gather_frame(FrameTo to) const {
   const FieldFrame own = share_->frame();
-  const auto* process = own.find("process");
-  if (!process) throw std::logic_error("a share's frame has no process field");
+  if (!own.find("process")) throw std::logic_error("a share's frame has no process field");
   const int me = transport_.process(), processes = transport_.processes();
   const std::size_t n = particles_;
   const auto first = [&](int r) { return id_block_start(n, processes, r); };
@@ -243,8 +257,9 @@ FieldFrame DistributedEngine::gather_frame(FrameTo to) const {
   const int messages = to == FrameTo::id_blocks ? processes : 1;
   std::vector<std::uint64_t> count(static_cast<std::size_t>(messages), 0);
   std::vector<std::uint32_t> rows;
+  const std::vector<char> owned = owned_rows(own, me);
   for (std::uint32_t k = 0; k < own.size(); ++k)
-    if (process->values[k] == double(me)) rows.push_back(k), ++count[std::size_t(destination(own.id[k]))];
+    if (owned[k]) rows.push_back(k), ++count[std::size_t(destination(own.id[k]))];
 
   std::vector<ByteWriter> message(static_cast<std::size_t>(messages));
   for (int m = 0; m < messages; ++m) message[std::size_t(m)].put(count[std::size_t(m)]);

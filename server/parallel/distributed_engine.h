@@ -42,7 +42,8 @@ class DistributedEngine final : public Engine {
   FieldFrame frame_at_process_0() const override;
   FieldFrame local_frame() const override;  // the share's, with the field "process"
   FieldFrame frame_block() const override;
-  std::vector<std::vector<char>> parts_at_process_0(const SamplePart& part) const override;
+  std::vector<std::vector<char>> parts_at_process_0(const SamplePart& part,
+                                                    const std::vector<char>& request) const override;
   const char* device_name() const override { return share_->device_name(); }
   void set_forcing(const HydraulicForcing& forcing) override { share_->set_forcing(forcing); }
   HydraulicForcing forcing() const override { return share_->forcing(); }

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <memory>
@@ -152,11 +153,11 @@ class LeaderEngine final : public Engine {
   void refresh_seepage() override { call(Call::refresh_seepage), engine_->refresh_seepage(); }
   void zero_velocities() override { call(Call::zero_velocities), engine_->zero_velocities(); }
   // The others take their parts with a sampler and detector of their own of the same case
-  // (follow_engine), always with the probes and events: a sample of the energy alone
-  // (combine_sample_parts with_probes false) reads only the energy of each part.
-  std::vector<std::vector<char>> parts_at_process_0(const SamplePart& part) const override {
-    call(Call::sample_parts);
-    return engine_->parts_at_process_0(part);
+  // (follow_engine), as `request` asks (sample_request: the probes and events, or the energy alone).
+  std::vector<std::vector<char>> parts_at_process_0(const SamplePart& part,
+                                                    const std::vector<char>& request) const override {
+    call(Call::sample_parts, request);
+    return engine_->parts_at_process_0(part, request);
   }
   LoadBalance load_balance() const override { return engine_->load_balance(); }
 
@@ -195,9 +196,6 @@ void follow_engine(const std::string& case_bytes, Precision precision, Device de
     MPI_Comm_free(&communicator);
     return;
   }
-  const Engine::SamplePart part = [&](const FieldFrame& local, const std::vector<char>& owned) {
-    return sample_part(*probes, *events, mass, engine->forcing().ponding_pressure, true, local, owned);
-  };
   for (;;) {
     std::uint32_t kind = 0;
     std::vector<char> bytes;
@@ -231,10 +229,24 @@ void follow_engine(const std::string& case_bytes, Precision precision, Device de
         case Call::restart_clock: engine->restart_clock(); break;
         case Call::equilibrium: engine->equilibrium(); break;
         case Call::refresh_seepage: engine->refresh_seepage(); break;
-        case Call::sample_parts: engine->parts_at_process_0(part); break;
+        case Call::sample_parts: {
+          // The request is read inside the part: a malformed one is this process's failed part,
+          // which process 0 reports, not a failure here that would leave it waiting.
+          const Engine::SamplePart part = [&](const FieldFrame& local, const std::vector<char>& owned) {
+            return sample_part(*probes, *events, mass, engine->forcing().ponding_pressure,
+                               sample_request_with_probes(bytes), local, owned);
+          };
+          engine->parts_at_process_0(part, bytes);
+          break;
+        }
         case Call::end: break;
       }
-    } catch (const std::exception&) {
+    } catch (const std::exception& e) {
+      // Met by every process at one of the call's reductions, process 0 reports it too; met here
+      // alone, process 0 waits in the call's next exchange, and this line is what tells why.
+      int process = 0;
+      MPI_Comm_rank(communicator, &process);
+      std::fprintf(stderr, "cascade-server: process %d: %s\n", process, e.what());
     }
   }
   engine.reset();

@@ -666,9 +666,12 @@ void Session::sample_outputs(bool force) {
   const bool take_probes =
       (probe_due || force) && (probe_samples_.empty() || probe_samples_.back().step() != engine_->step_count());
   const OutputSample taken = combine_sample_parts(
-      *probes_, take_probes, engine_->parts_at_process_0([&](const FieldFrame& local, const std::vector<char>& owned) {
-        return sample_part(*probes_, *cascade_events_, mass, ponding, take_probes, local, owned);
-      }));
+      *probes_, take_probes,
+      engine_->parts_at_process_0(
+          [&](const FieldFrame& local, const std::vector<char>& owned) {
+            return sample_part(*probes_, *cascade_events_, mass, ponding, take_probes, local, owned);
+          },
+          sample_request(take_probes)));
   kinetic_energy_ = taken.kinetic_energy, max_soil_speed_ = taken.max_soil_speed;
   refresh_pore_water();
   last_energy_wall_ = wall_now();

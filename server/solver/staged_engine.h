@@ -79,9 +79,10 @@ class StagedEngine final : public Engine {
     sync();
     return dynamic_->frame_block();
   }
-  std::vector<std::vector<char>> parts_at_process_0(const SamplePart& part) const override {
+  std::vector<std::vector<char>> parts_at_process_0(const SamplePart& part,
+                                                    const std::vector<char>& request) const override {
     sync();
-    return dynamic_->parts_at_process_0(part);
+    return dynamic_->parts_at_process_0(part, request);
   }
   const char* device_name() const override { return dynamic_->device_name(); }
   PoreWaterAccount pore_water_account() const override {

@@ -21,13 +21,16 @@
 //  - Nothing lost: every particle owned by exactly one process in every frame
 //    (DistributedEngine::frame throws otherwise), the counts of water and soil those of the case,
 //    none lost.
+//  - A sample's part that fails on one process reaches process 0 with its reason.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -196,6 +199,52 @@ TEST(SplitRun, TerzaghiAsInOneProcess) {
 }
 TEST(SplitRun, SubmergedLayerAsInOneProcess) {
   compare_with_one_process("submerged_layer_2d.yaml", "Submerged soil layer (cases/submerged_layer_2d.yaml)", 0.01, 0.04, 0.04);
+}
+
+// A sample's part (Engine::parts_at_process_0: probes, events, energy) that throws on one process
+// reaches process 0 as an exception naming that process with its reason, while the others return
+// (a split server's other processes then wait for the next call); with every part taken, process
+// 0 has each process's part as sent: together they count every particle once.
+TEST(SplitRun, ASamplesPartThatThrowsReachesProcess0WithItsReason) {
+  testing::CaseRun alone("hydrostatic_tank_2d.yaml");
+  DistributedEngine split(alone.config, alone.set.particles, *transport);
+  const int failing = transport->processes() - 1;
+  bool fail = true;
+  const Engine::SamplePart part = [&](const FieldFrame&, const std::vector<char>& owned) {
+    if (fail && transport->process() == failing) throw std::runtime_error("the frame has no field 'suction'");
+    const auto count = std::uint64_t(std::count(owned.begin(), owned.end(), char(1)));
+    std::vector<char> bytes(sizeof count);
+    std::memcpy(bytes.data(), &count, sizeof count);
+    return bytes;
+  };
+  if (transport->process() == 0) {
+    try {
+      split.parts_at_process_0(part, {});
+      ADD_FAILURE() << "process " << failing << "'s failure did not reach process 0";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("process " + std::to_string(failing) +
+                                           " could not take its part of the sample: the frame has no field 'suction'"),
+                std::string::npos)
+          << e.what();
+    }
+  } else {
+    EXPECT_TRUE(split.parts_at_process_0(part, {}).empty());
+  }
+  fail = false;
+  const auto parts = split.parts_at_process_0(part, {});
+  if (transport->process() != 0) {
+    EXPECT_TRUE(parts.empty());
+    return;
+  }
+  ASSERT_EQ(parts.size(), std::size_t(transport->processes()));
+  std::uint64_t owned = 0;
+  for (const auto& p : parts) {
+    std::uint64_t count = 0;
+    ASSERT_EQ(p.size(), sizeof count);
+    std::memcpy(&count, p.data(), sizeof count);
+    owned += count;
+  }
+  EXPECT_EQ(owned, alone.set.particles.size());
 }
 
 }  // namespace
