@@ -45,8 +45,16 @@ struct FillNeighbourList {
   std::uint32_t* count;
   std::uint32_t* index;
   std::uint32_t capacity;
+  const std::uint32_t* owner;  // split over processes: per particle, its owner; else null
+  std::uint32_t process;       // this one
 
   CASCADE_HD void operator()(std::uint32_t i) const {
+    // A copy of another process's particle: no pass reads its list (Simulation::launch_owned; its
+    // state is its owner's, refresh_halo), so it gets none.
+    if (owner && owner[i] != process) {
+      count[i] = 0;
+      return;
+    }
     std::uint32_t* entries = index + std::size_t(i) * capacity;
     std::uint32_t n = 0;
     grid.for_each_neighbour_of(i, position, [&](std::uint32_t j, const Vec<Real, Dim>&, Real) {
@@ -102,14 +110,17 @@ class NeighbourList {
   bool built() const { return built_; }
 
   // Builds the lists of the first `moving` particles, the moving ones (sorted by cell; `grid`
-  // searches with the list radius).
-  void build(const GridView<Real, Dim>& grid, const Vector<Vec<Real, Dim>>& position, std::size_t moving) {
+  // searches with the list radius). Split over processes (`owner` not null), of those that
+  // `process` owns: the copies' lists are empty.
+  void build(const GridView<Real, Dim>& grid, const Vector<Vec<Real, Dim>>& position, std::size_t moving,
+             const std::uint32_t* owner, std::uint32_t process) {
     count_.resize(moving);
     for (;;) {
       index_.resize(moving * capacity_);
       thrust::for_each(Backend::policy(), thrust::counting_iterator<std::uint32_t>(0),
                        thrust::counting_iterator<std::uint32_t>(std::uint32_t(moving)),
-                       FillNeighbourList<Real, Dim>{grid, raw(position), raw(count_), raw(index_), capacity_});
+                       FillNeighbourList<Real, Dim>{grid, raw(position), raw(count_), raw(index_), capacity_,
+                                                    owner, process});
       const std::uint32_t longest =
           moving == 0 ? 0 : *thrust::max_element(Backend::policy(), count_.begin(), count_.end());
       if (longest <= capacity_) break;

@@ -625,7 +625,7 @@ class Simulation final : public Engine {
     grid_ = cells_.view();
     active_ = cells_.active();
     moving_ = cells_.moving();
-    neighbours_.build(grid_, position_, moving_);
+    neighbours_.build(grid_, position_, moving_, transport_ ? raw(owner_) : nullptr, transport_ ? process() : 0);
     launch(DummyVisibility<Real, Dim>{grid_, raw(position_), raw(dummy_flags_)}, moving_, active_);
     thrust::copy(Backend::policy(), position_.begin(), position_.end(), listed_position_.begin());
     if (transport_) map_halo();

@@ -57,7 +57,7 @@ struct ParticleFixture {
     cells->reorder(phase, scratch_phase);
     grid = cells->view();
     neighbours = std::make_unique<NeighbourList<double, Dim, Backend>>(h_over_dp);
-    neighbours->build(grid, position, cells->moving());
+    neighbours->build(grid, position, cells->moving(), nullptr, 0);
     const std::size_t n = position.size();
     for (auto* v : {&pressure, &density_rate, &water_density_rate, &step_limit}) v->assign(n, 0.0);
     for (auto* v : {&acceleration, &gradient}) v->assign(n, V::Zero());

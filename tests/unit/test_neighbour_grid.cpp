@@ -48,8 +48,24 @@ void compare_with_brute_force(const std::array<bool, 3>& periodic, std::uint32_t
   const Real support2 = Real(4 * h * h);
   // h/dp = 0.5: a small slot count, so that the builder has to grow it.
   NeighbourList<Real, Dim, Backend> lists(0.5);
-  lists.build(grid, position, cells.moving());
+  lists.build(grid, position, cells.moving(), nullptr, 0);
   const auto list_view = lists.view();
+  // Split over processes: process 0's lists, every third particle a copy of process 1's. The
+  // copies get none; the particles it owns, the lists above, entry for entry.
+  std::vector<std::uint32_t> host_owner(n);
+  for (int k = 0; k < n; ++k) host_owner[std::size_t(k)] = k % 3 == 1 ? 1u : 0u;
+  const typename Backend::template Vector<std::uint32_t> owner(host_owner.begin(), host_owner.end());
+  NeighbourList<Real, Dim, Backend> own_lists(0.5);
+  own_lists.build(grid, position, cells.moving(), raw(owner), 0);
+  const auto own_view = own_lists.view();
+  for (std::uint32_t i = 0; i < cells.moving(); ++i) {
+    if (host_owner[i] != 0) {
+      ASSERT_EQ(own_view.size(i), 0u) << "the copy " << i << " has a list";
+      continue;
+    }
+    ASSERT_EQ(own_view.size(i), list_view.size(i)) << "particle " << i;
+    for (std::uint32_t k = 0; k < own_view.size(i); ++k) ASSERT_EQ(own_view.entries(i)[k], list_view.entries(i)[k]);
+  }
   for (std::size_t i = 0; i < cells.active(); ++i) {
     std::set<std::uint32_t> found, found_of, found_moving;
     grid.for_each_neighbour(sorted[i], sorted.data(), [&](std::uint32_t j, const Vec<Real, Dim>& d, Real r2) {
