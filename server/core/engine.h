@@ -104,9 +104,10 @@ class Engine {
   // Each process's part of a sample of the outputs (probes, events, energy: server/io/sample_parts.h),
   // taken by `part` on its local frame and the rows it owns, brought to process 0, which gets one
   // per process (the others none): no frame is gathered. A part that throws reaches process 0 as
-  // an exception: its own, or a std::runtime_error naming the process and its reason. `request`: what the part
-  // is to hold, for the processes that take theirs with a function of their own (a split server's
-  // other processes, split_server.cpp, which receive it with the call); `part` knows it already.
+  // an exception: its own, or a std::runtime_error naming the process and its reason. `request`:
+  // what the part is to hold, for the processes that take theirs with a function of their own (a
+  // split server's other processes, split_server.cpp, which receive it with the call); `part`
+  // knows it already.
   using SamplePart = std::function<std::vector<char>(const FieldFrame& local, const std::vector<char>& owned)>;
   virtual std::vector<std::vector<char>> parts_at_process_0(const SamplePart& part,
                                                             const std::vector<char>& /*request*/) const {

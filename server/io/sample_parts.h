@@ -29,7 +29,8 @@ struct OutputSample {
 // events, or the energy alone. A split server's other processes take their parts by it.
 inline std::vector<char> sample_request(bool with_probes) { return {char(with_probes ? 1 : 0)}; }
 inline bool sample_request_with_probes(const std::vector<char>& request) {
-  if (request.size() != 1) throw std::invalid_argument("a sample's request of " + std::to_string(request.size()) + " bytes, not 1");
+  if (request.size() != 1)
+    throw std::invalid_argument("a sample's request of " + std::to_string(request.size()) + " bytes, not 1");
   return request[0] != 0;
 }
 
